@@ -1,0 +1,75 @@
+#pragma once
+/** \file ModSkinnedFoldOverT.hh */
+
+#include "OpenMeshSkinned/Solver/CollapseSolverT.hh"
+
+#include <OpenMesh/Tools/Decimater/ModBaseT.hh>
+
+#include <cmath>
+
+namespace OpenMeshSkinned {
+
+/** Binary module: refuses a collapse if any face around it would turn its normal by more than the
+ *  maximum angle (degrees, default 90 as DeCoro & Rusinkiewicz), or become degenerate, in ANY example
+ *  pose. The check uses the merged vertex where it will really be: the solver's position and weights
+ *  when ModSkinnedQuadricT places vertices, v1 as it is otherwise.
+ *
+ *  \code
+ *  OpenMeshSkinned::ModSkinnedFoldOverT<Mesh>::Handle hf;
+ *  dec.add(hf);
+ *  dec.module(hf).set_max_angle(60.0);
+ *  \endcode
+ */
+template <typename MeshT>
+class ModSkinnedFoldOverT : public OpenMesh::Decimater::ModBaseT<MeshT> {
+public:
+  DECIMATING_MODULE(ModSkinnedFoldOverT, MeshT, SkinnedFoldOver);
+
+  explicit ModSkinnedFoldOverT(MeshT& mesh) : Base(mesh, true) {
+    solver_ = shared_solver(mesh, owns_property_);
+    set_max_angle(90.0);
+  }
+  ~ModSkinnedFoldOverT() override {
+    if (owns_property_) release_shared_solver(Base::mesh());
+  }
+
+  void initialize() override { solver_->prepare(); }
+
+  float collapse_priority(const CollapseInfo& ci) override {
+    Eigen::Vector3d rest;
+    Influences w;
+    solver_->placement_of(ci, rest, w);
+    return solver_->flips(ci, rest, w, min_cos_) ? float(Base::ILLEGAL_COLLAPSE) : float(Base::LEGAL_COLLAPSE);
+  }
+
+  void preprocess_collapse(const CollapseInfo& ci) override { solver_->begin_collapse(ci); }
+  void postprocess_collapse(const CollapseInfo& ci) override { solver_->end_collapse(ci); }
+
+  /// Largest allowed rotation of a face normal by one collapse, in degrees, in any pose (0..180].
+  void set_max_angle(double deg) {
+    max_angle_deg_ = deg;
+    update();
+  }
+  double max_angle() const { return max_angle_deg_; }
+
+  void set_error_tolerance_factor(double factor) override {
+    if (factor >= 0.0 && factor <= 1.0) {
+      Base::error_tolerance_factor_ = factor;
+      update();
+    }
+  }
+
+private:
+  void update() {
+    const double rad = max_angle_deg_ * Base::error_tolerance_factor_ * M_PI / 180.0;
+    min_cos_ = std::cos(rad);
+    solver_->set_fold_over_angle(rad);
+  }
+
+  std::shared_ptr<CollapseSolverT<MeshT>> solver_;
+  bool owns_property_ = false;
+  double max_angle_deg_ = 90.0;
+  double min_cos_ = 0.0;
+};
+
+}  // namespace OpenMeshSkinned

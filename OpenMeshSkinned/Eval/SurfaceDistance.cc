@@ -1,0 +1,94 @@
+#include "OpenMeshSkinned/Eval/SurfaceDistance.hh"
+
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Simple_cartesian.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+namespace OpenMeshSkinned {
+namespace {
+
+using K = CGAL::Simple_cartesian<double>;
+using Triangle = K::Triangle_3;
+using Point = K::Point_3;
+using Iterator = std::vector<Triangle>::const_iterator;
+using Primitive = CGAL::AABB_triangle_primitive<K, Iterator>;
+using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
+
+std::vector<Triangle> to_cgal(const TriangleSoup& s) {
+  std::vector<Triangle> t;
+  t.reserve(s.triangles.size());
+  for (const auto& f : s.triangles) {
+    const auto& a = s.points[f[0]];
+    const auto& b = s.points[f[1]];
+    const auto& c = s.points[f[2]];
+    t.emplace_back(Point(a.x(), a.y(), a.z()), Point(b.x(), b.y(), b.z()), Point(c.x(), c.y(), c.z()));
+  }
+  return t;
+}
+
+// Samples of \p from: its vertices, then n points by area (uniform in each triangle).
+std::vector<Point> samples(const TriangleSoup& from, size_t n, std::mt19937_64& rng) {
+  std::vector<Point> pts;
+  std::vector<char> used(from.points.size(), 0);
+  for (const auto& f : from.triangles)
+    for (int i : f) used[i] = 1;
+  for (size_t i = 0; i < from.points.size(); ++i)
+    if (used[i]) pts.emplace_back(from.points[i].x(), from.points[i].y(), from.points[i].z());
+  std::vector<double> cum;
+  double total = 0.0;
+  for (const auto& f : from.triangles) {
+    total += 0.5 * (from.points[f[1]] - from.points[f[0]]).cross(from.points[f[2]] - from.points[f[0]]).norm();
+    cum.push_back(total);
+  }
+  if (total <= 0.0) return pts;
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (size_t s = 0; s < n; ++s) {
+    const size_t t = std::min(cum.size() - 1, size_t(std::lower_bound(cum.begin(), cum.end(), u(rng) * total) - cum.begin()));
+    double r1 = u(rng), r2 = u(rng);
+    if (r1 + r2 > 1.0) {
+      r1 = 1.0 - r1;
+      r2 = 1.0 - r2;
+    }
+    const auto& f = from.triangles[t];
+    const Eigen::Vector3d p = from.points[f[0]] + r1 * (from.points[f[1]] - from.points[f[0]]) +
+                              r2 * (from.points[f[2]] - from.points[f[0]]);
+    pts.emplace_back(p.x(), p.y(), p.z());
+  }
+  return pts;
+}
+
+void one_way(const TriangleSoup& from, const TriangleSoup& to, size_t n, std::mt19937_64& rng, double& sum_sq,
+             double& max_d, size_t& count) {
+  const std::vector<Triangle> tris = to_cgal(to);
+  if (tris.empty()) return;
+  Tree tree(tris.begin(), tris.end());
+  tree.accelerate_distance_queries();
+  for (const Point& p : samples(from, n, rng)) {
+    const double d2 = tree.squared_distance(p);
+    sum_sq += d2;
+    max_d = std::max(max_d, std::sqrt(d2));
+    ++count;
+  }
+}
+
+}  // namespace
+
+SurfaceDistance surface_distance(const TriangleSoup& a, const TriangleSoup& b, size_t n, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  double sum_sq = 0.0, max_d = 0.0;
+  size_t count = 0;
+  one_way(a, b, n, rng, sum_sq, max_d, count);
+  one_way(b, a, n, rng, sum_sq, max_d, count);
+  SurfaceDistance d;
+  d.samples = count;
+  d.rms = count ? std::sqrt(sum_sq / count) : 0.0;
+  d.hausdorff = max_d;
+  return d;
+}
+
+}  // namespace OpenMeshSkinned

@@ -1,0 +1,60 @@
+#pragma once
+/** \file SurfaceDistance.hh
+ *  Metro-style distance between two triangle surfaces (Cignoni et al.): points sampled by area on each
+ *  surface, plus its vertices, each measured to the nearest point of the other surface through CGAL's
+ *  AABB tree. Symmetric: both directions are pooled.
+ */
+
+#include "OpenMeshSkinned/Skin/LinearBlendSkinning.hh"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace OpenMeshSkinned {
+
+/// A triangle soup: positions and index triples.
+struct TriangleSoup {
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::array<int, 3>> triangles;
+};
+
+struct SurfaceDistance {
+  double rms = 0.0;        ///< root mean square of all sample distances (both directions)
+  double hausdorff = 0.0;  ///< largest sample distance (both directions)
+  size_t samples = 0;
+};
+
+/** Distance between \p a and \p b with about \p samples_per_surface area samples on each (plus vertices).
+ *  Deterministic for a given \p seed. */
+SurfaceDistance surface_distance(const TriangleSoup& a, const TriangleSoup& b, size_t samples_per_surface = 20000,
+                                 uint64_t seed = 1);
+
+/// The mesh's non-deleted faces, with vertices posed by \p pose (linear blend skinning).
+template <typename Mesh>
+TriangleSoup posed_soup(const Mesh& mesh, const Pose& pose) {
+  TriangleSoup s;
+  s.points = skin_positions(mesh, pose);
+  for (auto fh : mesh.faces()) {
+    auto fv = mesh.cfv_iter(fh);
+    const int i = (fv++)->idx(), j = (fv++)->idx(), k = fv->idx();
+    s.triangles.push_back({i, j, k});
+  }
+  return s;
+}
+
+/// Diagonal of the bounding box of the mesh's non-deleted vertices (rest pose).
+template <typename Mesh>
+double bbox_diagonal(const Mesh& mesh) {
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
+  for (auto vh : mesh.vertices()) {
+    const Eigen::Vector3d p = to_eigen(mesh.point(vh));
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return mesh.n_vertices() ? (hi - lo).norm() : 0.0;
+}
+
+}  // namespace OpenMeshSkinned

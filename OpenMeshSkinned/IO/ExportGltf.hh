@@ -1,0 +1,21 @@
+#pragma once
+/** \file ExportGltf.hh
+ *  Writes a skinned mesh as glTF 2.0: skeleton nodes with their names and hierarchy, one skin with
+ *  inverse bind matrices, JOINTS/WEIGHTS (a second set when a vertex keeps more than four bones),
+ *  normals and UVs split back into glTF vertices at seams, one primitive per material, the materials,
+ *  and every animation clip.
+ */
+
+#include "OpenMeshSkinned/IO/Import.hh"
+#include "OpenMeshSkinned/Mesh/SkinnedMesh.hh"
+
+#include <string>
+
+namespace OpenMeshSkinned {
+
+/** Writes \p mesh to \p path: binary .glb, or .gltf with the buffers embedded so the file stands alone.
+ *  The file appears complete or not at all (written beside the target, then renamed).
+ *  Throws IOError when the extension is neither, the folder is not writable, or the skin is invalid. */
+void export_gltf(const SkinnedMesh& mesh, const std::string& path);
+
+}  // namespace OpenMeshSkinned

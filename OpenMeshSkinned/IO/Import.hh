@@ -1,0 +1,55 @@
+#pragma once
+/** \file Import.hh
+ *  Reads any skinned asset assimp understands (glTF/GLB, FBX, Collada, X, MD5, B3D, SMD, ...) into one
+ *  SkinnedMesh carrying its skeleton, skin, animation clips and materials.
+ */
+
+#include "OpenMeshSkinned/Mesh/SkinnedMesh.hh"
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace OpenMeshSkinned {
+
+/// An input or output file that cannot be used; what() is one line: "<file>: <problem>".
+class IOError : public std::runtime_error {
+public:
+  using std::runtime_error::runtime_error;
+};
+
+struct ImportOptions {
+  /** Rescale every vertex's weights to sum to one, whatever the sum (default). FBX and Collada store raw
+   *  deformer weights that the authoring tool normalises at run time (Blender's armature modifier does),
+   *  so real files often sum to 0.9 or 1.3; the report says how many and the range. With false, sums off
+   *  by more than sum_tolerance are an error. A sum of 0, a negative or a non-finite weight is always an
+   *  error. */
+  bool normalize_weights = true;
+  double sum_tolerance = 1e-2;
+};
+
+/// What the importer did to the data, for the user to read.
+struct ImportReport {
+  size_t source_meshes = 0;
+  size_t source_vertices = 0;         ///< vertices as stored in the file (split at seams)
+  size_t welded_vertices = 0;         ///< OpenMesh vertices after welding split copies
+  size_t faces = 0;
+  size_t degenerate_faces_skipped = 0;   ///< triangles with a repeated vertex after welding
+  size_t nonmanifold_vertices_added = 0; ///< copies made so that faces on complex edges are kept
+  size_t unweighted_vertices = 0;        ///< vertices of a skinned mesh with no bone: bound to the mesh's node
+  size_t truncated_vertices = 0;         ///< vertices with more than Influences::kCapacity bones
+  size_t renormalized_vertices = 0;     ///< vertices whose weight sum was not 1 (rescaled)
+  double min_weight_sum = 1.0, max_weight_sum = 1.0;  ///< range of the sums as found in the file
+  size_t joints = 0;
+  size_t clips = 0;
+  bool rigid = false;  ///< the file had no skin at all; every mesh moves with its node
+  std::vector<std::string> warnings;
+};
+
+/** Imports \p path into \p mesh (which is cleared first). Split vertices are welded by position and
+ *  identical skin; normals and UVs become per-halfedge attributes so seams survive; each face keeps its
+ *  material ("f:material"). The example poses are set to the bind pose alone.
+ *  Throws IOError (missing, empty, unreadable or invalid file, or an unusable skin). */
+ImportReport import_skinned(const std::string& path, SkinnedMesh& mesh, const ImportOptions& opt = {});
+
+}  // namespace OpenMeshSkinned

@@ -1,0 +1,35 @@
+#pragma once
+/** \file Procedural.hh
+ *  The papers' own test characters, generated: DeCoro & Rusinkiewicz's tapered leg bending at the knee,
+ *  and Landreneau & Schaefer's square column bent in several example poses.
+ */
+
+#include "OpenMeshSkinned/Mesh/SkinnedMesh.hh"
+
+namespace OpenMeshSkinned {
+
+struct TubeOptions {
+  int around = 32;          ///< segments around the tube
+  int along = 64;           ///< segments along the tube
+  double length = 2.0;
+  double radius_base = 0.25;
+  double radius_tip = 0.15; ///< < radius_base tapers
+  bool square = false;      ///< square cross-section instead of a circle
+  int bones = 2;            ///< a chain of equal bones along +y
+  double blend = 0.1;       ///< half-width (fraction of length) of the weight blend at each joint
+};
+
+/** A tube along +y, skinned to a chain of bones, with one clip "bend" in which every joint but the root
+ *  rotates about +x from 0 to \p bend_degrees over one second. The example poses are left at the bind
+ *  pose only. Vertices blend linearly (smoothstep) between neighbouring bones near each joint. */
+SkinnedMesh make_skinned_tube(const TubeOptions& opt, double bend_degrees);
+
+/// DeCoro's leg: tapered cylinder, two bones, knee bending 0..90 degrees; example poses at 0 and 90.
+SkinnedMesh make_bending_cylinder(int around = 32, int along = 64);
+
+/** Landreneau & Schaefer's square column: 4 bones; \p around x \p along x 2 triangles (default 128 x 448
+ *  x 2 = 114,688 as in their Table 1); four example poses bending it forward, back, left and right, and
+ *  one clip "sway" through all of them. */
+SkinnedMesh make_square_column(int around = 128, int along = 448);
+
+}  // namespace OpenMeshSkinned

@@ -1,0 +1,24 @@
+#pragma once
+/** \file SkinnedMesh.hh
+ *  The concrete mesh type the importer and exporter use. The decimater modules are templates and work on
+ *  any OpenMesh triangle mesh (float or double points) that carries the skin properties.
+ */
+
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+
+namespace OpenMeshSkinned {
+
+struct SkinnedTraits : public OpenMesh::DefaultTraits {
+  using Point = OpenMesh::Vec3d;
+  using Normal = OpenMesh::Vec3d;
+  using TexCoord2D = OpenMesh::Vec2f;
+  // Seams: normals and UVs are per corner (wedge), so one welded vertex can carry several of each.
+  HalfedgeAttributes(OpenMesh::Attributes::Normal | OpenMesh::Attributes::TexCoord2D | OpenMesh::Attributes::Status);
+  VertexAttributes(OpenMesh::Attributes::Status);
+  FaceAttributes(OpenMesh::Attributes::Normal | OpenMesh::Attributes::Status);
+  EdgeAttributes(OpenMesh::Attributes::Status);
+};
+
+using SkinnedMesh = OpenMesh::TriMesh_ArrayKernelT<SkinnedTraits>;
+
+}  // namespace OpenMeshSkinned

@@ -1,0 +1,62 @@
+#pragma once
+/** \file LinearBlendSkinning.hh
+ *  Linear blend skinning: p = sum_k w_k M_k v, for one vertex or the whole mesh.
+ */
+
+#include "OpenMeshSkinned/Skin/SkinProperties.hh"
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <vector>
+
+namespace OpenMeshSkinned {
+
+/// The blended affine map sum_k w_k M_k of one vertex in one pose.
+inline Affine3 blend(const Influences& inf, const Pose& pose) {
+  Affine3 m = Affine3::Zero();
+  for (const JointWeight& jw : inf) m += jw.weight * pose.joint[jw.joint];
+  return m;
+}
+
+/// Skinned position of a rest-pose point with influences \p inf in \p pose.
+inline Eigen::Vector3d skin_point(const Eigen::Vector3d& rest, const Influences& inf, const Pose& pose) {
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  for (const JointWeight& jw : inf) p += jw.weight * (pose.joint[jw.joint] * rest.homogeneous());
+  return p;
+}
+
+template <typename Point>
+Eigen::Vector3d to_eigen(const Point& p) {
+  return Eigen::Vector3d(p[0], p[1], p[2]);
+}
+
+/// Posed positions of all vertices (indexed by vertex index; deleted vertices get their rest position).
+template <typename Mesh>
+std::vector<Eigen::Vector3d> skin_positions(const Mesh& mesh, const Pose& pose) {
+  const auto h = influences_handle(mesh);
+  std::vector<Eigen::Vector3d> out(mesh.n_vertices());
+  for (auto vh : mesh.all_vertices()) {
+    const Eigen::Vector3d rest = to_eigen(mesh.point(vh));
+    out[vh.idx()] = mesh.status(vh).deleted() ? rest : skin_point(rest, mesh.property(h, vh), pose);
+  }
+  return out;
+}
+
+/// Posed unit face normals (indexed by face index; zero for deleted or degenerate faces).
+template <typename Mesh>
+std::vector<Eigen::Vector3d> skin_face_normals(const Mesh& mesh, const std::vector<Eigen::Vector3d>& posed) {
+  std::vector<Eigen::Vector3d> out(mesh.n_faces(), Eigen::Vector3d::Zero());
+  for (auto fh : mesh.faces()) {
+    auto fv = mesh.cfv_iter(fh);
+    const Eigen::Vector3d& a = posed[(fv++)->idx()];
+    const Eigen::Vector3d& b = posed[(fv++)->idx()];
+    const Eigen::Vector3d& c = posed[fv->idx()];
+    const Eigen::Vector3d n = (b - a).cross(c - a);
+    const double len = n.norm();
+    if (len > 0.0) out[fh.idx()] = n / len;
+  }
+  return out;
+}
+
+}  // namespace OpenMeshSkinned

@@ -1,0 +1,511 @@
+#pragma once
+/** \file CollapseSolverT.hh
+ *  The one solve per candidate edge that all OpenMeshSkinned decimater modules share.
+ *
+ *  For an edge (v0, v1) it minimises the quartic error of Landreneau & Schaefer (eq. 3)
+ *
+ *      E(v, a) = sum_poses (sum_k a_k M_k v)^T (Q_v0 + Q_v1) (sum_k a_k M_k v)
+ *
+ *  over the rest position v and the weights a (support: the endpoints' joints) by alternating the 3x3
+ *  vertex solve (3.1) and the constrained weight solve (3.2, WeightSolver), starting from the endpoints'
+ *  average weights, until the error stops falling. The answer depends only on the two endpoints, so it
+ *  is cached per edge and reused until either endpoint changes (vertex version stamps): DecimaterT asks
+ *  for every edge around a collapse again, and most of those did not change.
+ *
+ *  The solver lives in the named mesh property "m:omsk_collapse_solver" (see shared_solver()), so the
+ *  modules find each other's settings and work alone or in any combination.
+ */
+
+#include "OpenMeshSkinned/Skin/LinearBlendSkinning.hh"
+#include "OpenMeshSkinned/Skin/SkinProperties.hh"
+#include "OpenMeshSkinned/Solver/PoseQuadric.hh"
+#include "OpenMeshSkinned/Solver/WeightSolver.hh"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+
+#include <OpenMesh/Tools/Decimater/CollapseInfoT.hh>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace OpenMeshSkinned {
+
+/// The solver's answer for one edge.
+struct CollapseResult {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< rest-pose position of the merged vertex
+  Influences weights;                                 ///< its skin, within the cap
+  double error = 0.0;                                 ///< quartic error E(position, weights), >= 0
+  bool valid = false;                                 ///< false when the solve produced nothing finite
+};
+
+struct CollapseSolverStats {
+  size_t requests = 0;     ///< times a module asked for an edge
+  size_t solves = 0;       ///< edges actually solved
+  size_t cache_hits = 0;   ///< answered from the cache
+  size_t collapses = 0;
+  WeightSolverStats weights;
+};
+
+template <typename Mesh>
+class CollapseSolverT {
+public:
+  using VertexHandle = typename Mesh::VertexHandle;
+  using EdgeHandle = typename Mesh::EdgeHandle;
+  using CollapseInfo = OpenMesh::Decimater::CollapseInfoT<Mesh>;
+
+  explicit CollapseSolverT(Mesh& mesh) : mesh_(mesh) {}
+
+  // ---- settings (written by the modules' setters) ----------------------------------------------------
+
+  /// Most influences a vertex may have (ModWeightCapT sets it; otherwise the storage capacity).
+  void set_max_influences(int n) {
+    max_influences_ = std::clamp(n, 1, Influences::kCapacity);
+    cache_.clear();
+  }
+  int max_influences() const { return max_influences_; }
+  void set_cap_strategy(CapStrategy s) {
+    strategy_ = s;
+    cache_.clear();
+  }
+  CapStrategy cap_strategy() const { return strategy_; }
+  /// Whether the merged vertex takes the solved position and weights (ModSkinnedQuadricT turns it on).
+  /// Off, a collapse is OpenMesh's plain halfedge collapse: v1 keeps its position and skin.
+  void set_placement(bool on) { placement_ = on; }
+  bool placement() const { return placement_; }
+  /// Largest normal rotation (radians) a collapse may cause in any pose; set by ModSkinnedFoldOverT.
+  /// The placement is checked against it again at collapse time (see end_collapse()).
+  void set_fold_over_angle(double rad) { fold_cos_ = std::cos(rad); fold_check_ = true; }
+  bool fold_over_check() const { return fold_check_; }
+  void set_max_iterations(int n) { max_iterations_ = std::max(1, n); }
+  int max_iterations() const { return max_iterations_; }
+
+  // ---- lifetime --------------------------------------------------------------------------------------
+
+  /** Builds per-vertex, per-pose quadrics and posed positions from the mesh as it is now. Every module
+   *  calls it from initialize(); only the first call of a decimation does the work. */
+  void prepare() {
+    if (prepared_) return;
+    h_inf_ = influences_handle(mesh_);
+    poses_ = example_poses(mesh_);
+    if (poses_.empty()) poses_.push_back(Pose::identity(skeleton(mesh_).size()));
+    P_ = static_cast<int>(poses_.size());
+    const size_t nv = mesh_.n_vertices();
+    posed_.assign(nv * P_, Eigen::Vector3d::Zero());
+    quadric_.assign(nv * P_, PoseQuadric{});
+    stamp_.assign(nv, 0);
+    cache_.assign(mesh_.n_edges(), CacheEntry{});
+    for (auto vh : mesh_.vertices()) update_posed(vh);
+    for (auto fh : mesh_.faces()) {
+      auto fv = mesh_.cfv_iter(fh);
+      const VertexHandle a = *fv++, b = *fv++, c = *fv;
+      for (int j = 0; j < P_; ++j) {
+        const Eigen::Vector3d &pa = posed(a, j), &pb = posed(b, j), &pc = posed(c, j);
+        Eigen::Vector3d n = (pb - pa).cross(pc - pa);
+        const double len = n.norm();
+        if (len <= 0.0) continue;
+        n /= len;
+        const PoseQuadric q = PoseQuadric::plane(n, -n.dot(pa), 0.5 * len);
+        quadric(a, j) += q;
+        quadric(b, j) += q;
+        quadric(c, j) += q;
+      }
+    }
+    // Boundary edges get a perpendicular constraint plane so that open borders do not shrink away.
+    for (auto heh : mesh_.halfedges()) {
+      if (!mesh_.is_boundary(heh)) continue;
+      const auto opp = mesh_.opposite_halfedge_handle(heh);
+      const auto fh = mesh_.face_handle(opp);
+      const VertexHandle a = mesh_.from_vertex_handle(heh), b = mesh_.to_vertex_handle(heh);
+      for (int j = 0; j < P_; ++j) {
+        auto fv = mesh_.cfv_iter(fh);
+        const Eigen::Vector3d &f0 = posed(*fv++, j), &f1 = posed(*fv++, j), &f2 = posed(*fv, j);
+        const Eigen::Vector3d fn = (f1 - f0).cross(f2 - f0);
+        const Eigen::Vector3d e = posed(b, j) - posed(a, j);
+        Eigen::Vector3d n = e.cross(fn);
+        const double len = n.norm();
+        if (len <= 0.0) continue;
+        n /= len;
+        const PoseQuadric q = PoseQuadric::plane(n, -n.dot(posed(a, j)), e.squaredNorm());
+        quadric(a, j) += q;
+        quadric(b, j) += q;
+      }
+    }
+    prepared_ = true;
+  }
+
+  bool prepared() const { return prepared_; }
+  int n_poses() const { return P_; }
+  const Pose& pose(int j) const { return poses_[j]; }
+  const Eigen::Vector3d& posed(VertexHandle v, int j) const { return posed_[v.idx() * P_ + j]; }
+  PoseQuadric& quadric(VertexHandle v, int j) { return quadric_[v.idx() * P_ + j]; }
+  const PoseQuadric& quadric(VertexHandle v, int j) const { return quadric_[v.idx() * P_ + j]; }
+
+  // ---- solving ---------------------------------------------------------------------------------------
+
+  /// The optimal merged vertex for the edge of \p ci, from the cache when its endpoints did not change.
+  const CollapseResult& solve(const CollapseInfo& ci) {
+    ++stats_.requests;
+    const EdgeHandle eh = mesh_.edge_handle(ci.v0v1);
+    CacheEntry& ce = cache_[eh.idx()];
+    const int a = std::min(ci.v0.idx(), ci.v1.idx()), b = std::max(ci.v0.idx(), ci.v1.idx());
+    if (ce.filled && ce.va == a && ce.vb == b && ce.sa == stamp_[a] && ce.sb == stamp_[b]) {
+      ++stats_.cache_hits;
+      return ce.result;
+    }
+    ++stats_.solves;
+    solve_edge(VertexHandle(a), VertexHandle(b), ce.result);
+    ce.filled = true;
+    ce.va = a;
+    ce.vb = b;
+    ce.sa = stamp_[a];
+    ce.sb = stamp_[b];
+    return ce.result;
+  }
+
+  /// The merged vertex's position in pose \p j for a given rest position and skin.
+  Eigen::Vector3d posed_point(const Eigen::Vector3d& rest, const Influences& w, int j) const {
+    return skin_point(rest, w, poses_[j]);
+  }
+
+  /** Whether collapsing \p ci, with the merged vertex at \p rest with skin \p w, turns any remaining face
+   *  around it by more than the allowed angle, or makes it degenerate, in any pose. */
+  bool flips(const CollapseInfo& ci, const Eigen::Vector3d& rest, const Influences& w, double min_cos) const {
+    for (int j = 0; j < P_; ++j) {
+      const Eigen::Vector3d p = posed_point(rest, w, j);
+      if (flips_in_pose(ci.v0, ci.v1, ci.v0, p, j, min_cos) || flips_in_pose(ci.v1, ci.v0, ci.v0, p, j, min_cos))
+        return true;
+    }
+    return false;
+  }
+
+  /// Where and with which skin the merged vertex will be if \p ci is collapsed now.
+  void placement_of(const CollapseInfo& ci, Eigen::Vector3d& rest, Influences& w) {
+    if (placement_) {
+      const CollapseResult& r = solve(ci);
+      if (r.valid) {
+        rest = r.position;
+        w = r.weights;
+        return;
+      }
+    }
+    rest = to_eigen(mesh_.point(ci.v1));
+    w = mesh_.property(h_inf_, ci.v1);
+  }
+
+  // ---- collapse bookkeeping (every module forwards its pre/postprocess; the first call does the work) --
+
+  void begin_collapse(const CollapseInfo& ci) {
+    if (pending_) return;
+    pending_ = true;
+    if (placement_) {
+      pending_result_ = solve(ci);
+      // DecimaterT does not re-ask binary modules when it pops a collapse, and the vertices around an
+      // earlier moved vertex may not have been re-asked either: check the placement again, now.
+      if (pending_result_.valid && fold_check_ && flips(ci, pending_result_.position, pending_result_.weights, fold_cos_)) {
+        ++stats_.placement_fallbacks;
+        pending_result_.valid = false;
+      }
+    }
+  }
+
+  void end_collapse(const CollapseInfo& ci) {
+    if (!pending_) return;
+    pending_ = false;
+    ++stats_.collapses;
+    const VertexHandle v0 = ci.v0, v1 = ci.v1;
+    for (int j = 0; j < P_; ++j) quadric(v1, j) += quadric(v0, j);
+    if (placement_ && pending_result_.valid) {
+      const Eigen::Vector3d& p = pending_result_.position;
+      mesh_.set_point(v1, typename Mesh::Point(p.x(), p.y(), p.z()));
+      mesh_.property(h_inf_, v1) = pending_result_.weights;
+      update_posed(v1);
+      if (mesh_.has_face_normals())
+        for (auto fh : mesh_.vf_range(v1)) mesh_.set_normal(fh, mesh_.calc_face_normal(fh));
+    } else if (mesh_.property(h_inf_, v1).size() > max_influences_) {
+      reduce_vertex(v1);
+    }
+    ++stamp_[v1.idx()];
+    ++stamp_[v0.idx()];
+  }
+
+  /** Reduces every vertex with more than max_influences() bones by the weight solve on its own quadrics
+   *  at its own position (not by plain truncation). Returns how many vertices changed. */
+  size_t reduce_input_influences() {
+    size_t changed = 0;
+    for (auto vh : mesh_.vertices())
+      if (mesh_.property(h_inf_, vh).size() > max_influences_) {
+        reduce_vertex(vh);
+        ++changed;
+      }
+    return changed;
+  }
+
+  const CollapseSolverStats& stats() const {
+    stats_.weights = weights_.stats();
+    return stats_;
+  }
+  size_t placement_fallbacks() const { return stats_.placement_fallbacks; }
+  WeightSolver& weight_solver() { return weights_; }
+
+private:
+  struct CacheEntry {
+    CollapseResult result;
+    int va = -1, vb = -1;
+    uint32_t sa = 0, sb = 0;
+    bool filled = false;
+  };
+  struct Stats : CollapseSolverStats {
+    size_t placement_fallbacks = 0;
+  };
+
+  void update_posed(VertexHandle v) {
+    const Eigen::Vector3d rest = to_eigen(mesh_.point(v));
+    const Influences& w = mesh_.property(h_inf_, v);
+    for (int j = 0; j < P_; ++j) posed_[v.idx() * P_ + j] = skin_point(rest, w, poses_[j]);
+  }
+
+  // Faces around \p center that survive the collapse (those not holding \p other), with \p moved
+  // (v0 or center itself) replaced by the merged vertex at posed position p.
+  bool flips_in_pose(VertexHandle center, VertexHandle other, VertexHandle v0, const Eigen::Vector3d& p, int j,
+                     double min_cos) const {
+    for (auto heh : mesh_.voh_range(center)) {
+      if (mesh_.is_boundary(heh)) continue;
+      const VertexHandle a = mesh_.to_vertex_handle(heh);
+      const VertexHandle b = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(heh));
+      if (a == other || b == other) continue;  // removed by the collapse
+      (void)v0;
+      const Eigen::Vector3d &pc = posed(center, j), &pa = posed(a, j), &pb = posed(b, j);
+      const Eigen::Vector3d n_old = (pa - pc).cross(pb - pc);
+      const Eigen::Vector3d n_new = (pa - p).cross(pb - p);
+      const double l_new = n_new.norm(), l_old = n_old.norm();
+      const double scale = std::max({(pa - p).squaredNorm(), (pb - p).squaredNorm(), (pa - pb).squaredNorm()});
+      if (l_new <= 1e-10 * scale) return true;  // degenerate
+      if (l_old <= 0.0) continue;
+      if (n_new.dot(n_old) < min_cos * l_new * l_old) return true;
+    }
+    return false;
+  }
+
+  // E(v, a) for the summed quadrics of the current edge.
+  double energy(const Eigen::Vector3d& v, const WeightSolver::Vector& a) const {
+    double e = 0.0;
+    for (int j = 0; j < P_; ++j) {
+      Eigen::Vector3d p = Eigen::Vector3d::Zero();
+      for (int k = 0; k < m_; ++k) p += a[k] * (M_[j * kMaxSupport + k] * v.homogeneous());
+      e += Q_[j](p);
+    }
+    return std::max(e, 0.0);
+  }
+
+  // Sum_j B_j^T A_j B_j v = -Sum_j B_j^T (A_j t_j + b_j), B_j, t_j the blended matrix of pose j.
+  bool vertex_step(const WeightSolver::Vector& a, Eigen::Vector3d& v) const {
+    Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+    for (int j = 0; j < P_; ++j) {
+      Affine3 B = Affine3::Zero();
+      for (int k = 0; k < m_; ++k) B += a[k] * M_[j * kMaxSupport + k];
+      const Eigen::Matrix3d R = B.leftCols<3>();
+      const Eigen::Vector3d t = B.col(3);
+      const Eigen::Matrix3d Aj = Q_[j].A();
+      A += R.transpose() * Aj * R;
+      rhs -= R.transpose() * (Aj * t + Q_[j].b());
+    }
+    // Well-conditioned only: a flat or straight neighbourhood leaves directions unconstrained, and then
+    // the caller picks among the endpoints and the midpoint instead.
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(A);
+    const Eigen::Vector3d ev = es.eigenvalues();
+    if (!(ev[0] > 1e-8 * std::max(ev[2], 1e-300))) return false;
+    v = es.eigenvectors() * ((es.eigenvectors().transpose() * rhs).cwiseQuotient(ev));
+    return v.allFinite();
+  }
+
+  // H = Sum_j V_j^T Q_j V_j with V_j's columns [M_k v; 1].
+  void weight_matrix(const Eigen::Vector3d& v, WeightSolver::Matrix& H) const {
+    H.setZero(m_, m_);
+    Eigen::Matrix<double, 4, Eigen::Dynamic, 0, 4, WeightSolver::kMaxJoints> V(4, m_);
+    for (int j = 0; j < P_; ++j) {
+      for (int k = 0; k < m_; ++k) {
+        V.col(k).head<3>() = M_[j * kMaxSupport + k] * v.homogeneous();
+        V(3, k) = 1.0;
+      }
+      const Eigen::Matrix4d Q = Q_[j].matrix();
+      H.noalias() += V.transpose() * Q * V;
+    }
+  }
+
+  void solve_edge(VertexHandle va, VertexHandle vb, CollapseResult& out) {
+    const Influences& wa = mesh_.property(h_inf_, va);
+    const Influences& wb = mesh_.property(h_inf_, vb);
+    m_ = 0;
+    for (const JointWeight& jw : wa) joints_[m_++] = jw.joint;
+    for (const JointWeight& jw : wb)
+      if (std::find(joints_.begin(), joints_.begin() + m_, jw.joint) == joints_.begin() + m_) joints_[m_++] = jw.joint;
+    Q_.resize(P_);
+    M_.resize(static_cast<size_t>(P_) * kMaxSupport);
+    for (int j = 0; j < P_; ++j) {
+      Q_[j] = quadric(va, j);
+      Q_[j] += quadric(vb, j);
+      for (int k = 0; k < m_; ++k) M_[j * kMaxSupport + k] = poses_[j].joint[joints_[k]];
+    }
+    WeightSolver::Vector start(m_), a(m_);
+    for (int k = 0; k < m_; ++k) start[k] = 0.5 * (wa.weight_of(joints_[k]) + wb.weight_of(joints_[k]));
+    const Eigen::Vector3d pa = to_eigen(mesh_.point(va)), pb = to_eigen(mesh_.point(vb));
+
+    a = start;
+    Eigen::Vector3d v;
+    double e = alternate(pa, pb, start, a, v, m_ > 1 ? Influences::kCapacity : 1);
+    if (count_nonzero(a) > max_influences_) {
+      // Cap after the free optimum (paper 3.2), then optimise again on the kept joints only.
+      WeightSolver::Matrix H;
+      weight_matrix(v, H);
+      weights_.solve_capped(H, start, max_influences_, strategy_, a);
+      e = alternate_fixed_support(pa, pb, start, a, v);
+    }
+    out.valid = v.allFinite() && std::isfinite(e);
+    out.position = v;
+    out.error = e;
+    out.weights.clear();
+    for (int k = 0; k < m_; ++k)
+      if (a[k] > 0.0) out.weights.push(joints_[k], a[k]);
+    out.weights.normalize();
+    out.weights.sort();
+  }
+
+  static int count_nonzero(const WeightSolver::Vector& a) { return static_cast<int>((a.array() > 0.0).count()); }
+
+  // Best of the endpoints and the midpoint for fixed weights: the fallback for an unconstrained vertex.
+  Eigen::Vector3d best_candidate(const Eigen::Vector3d& pa, const Eigen::Vector3d& pb, const WeightSolver::Vector& a) const {
+    const Eigen::Vector3d cand[3] = {pa, pb, 0.5 * (pa + pb)};
+    int best = 2;
+    double be = energy(cand[2], a);
+    for (int i = 0; i < 2; ++i) {
+      const double ei = energy(cand[i], a);
+      if (ei < be) {
+        be = ei;
+        best = i;
+      }
+    }
+    return cand[best];
+  }
+
+  // Alternating minimisation (paper 3.1/3.2); each half-step cannot increase E, so stop when it stalls.
+  double alternate(const Eigen::Vector3d& pa, const Eigen::Vector3d& pb, const WeightSolver::Vector& start,
+                   WeightSolver::Vector& a, Eigen::Vector3d& v, int cap) {
+    WeightSolver::Matrix H;
+    double e_prev = std::numeric_limits<double>::infinity();
+    double e = e_prev;
+    for (int it = 0; it < max_iterations_; ++it) {
+      if (!vertex_step(a, v)) v = best_candidate(pa, pb, a);
+      if (m_ == 1) return energy(v, a);
+      weight_matrix(v, H);
+      e = cap < m_ ? weights_.solve_capped(H, start, cap, strategy_, a) : weights_.solve(H, start, a);
+      if (!(e < e_prev * (1.0 - 1e-4))) break;
+      e_prev = e;
+    }
+    return energy(v, a);
+  }
+
+  // As alternate(), with the weights restricted to their current support.
+  double alternate_fixed_support(const Eigen::Vector3d& pa, const Eigen::Vector3d& pb,
+                                 const WeightSolver::Vector& start, WeightSolver::Vector& a, Eigen::Vector3d& v) {
+    Eigen::Matrix<bool, Eigen::Dynamic, 1, 0, WeightSolver::kMaxJoints, 1> active(m_);
+    for (int k = 0; k < m_; ++k) active[k] = a[k] > 0.0;
+    WeightSolver::Matrix H;
+    double e_prev = std::numeric_limits<double>::infinity();
+    for (int it = 0; it < max_iterations_; ++it) {
+      if (!vertex_step(a, v)) v = best_candidate(pa, pb, a);
+      weight_matrix(v, H);
+      const double e = weights_.solve(H, start, a, &active);
+      if (!(e < e_prev * (1.0 - 1e-4))) break;
+      e_prev = e;
+    }
+    return energy(v, a);
+  }
+
+  // A vertex with too many bones: weight solve on its own quadrics at its own position, capped.
+  void reduce_vertex(VertexHandle vh) {
+    const Influences& w = mesh_.property(h_inf_, vh);
+    m_ = 0;
+    for (const JointWeight& jw : w) joints_[m_++] = jw.joint;
+    Q_.resize(P_);
+    M_.resize(static_cast<size_t>(P_) * kMaxSupport);
+    for (int j = 0; j < P_; ++j) {
+      Q_[j] = quadric(vh, j);
+      for (int k = 0; k < m_; ++k) M_[j * kMaxSupport + k] = poses_[j].joint[joints_[k]];
+    }
+    WeightSolver::Vector start(m_), a(m_);
+    for (int k = 0; k < m_; ++k) start[k] = w[k].weight;
+    WeightSolver::Matrix H;
+    weight_matrix(to_eigen(mesh_.point(vh)), H);
+    weights_.solve_capped(H, start, max_influences_, strategy_, a);
+    Influences out;
+    for (int k = 0; k < m_; ++k)
+      if (a[k] > 0.0) out.push(joints_[k], a[k]);
+    out.normalize();
+    out.sort();
+    mesh_.property(h_inf_, vh) = out;
+    update_posed(vh);
+    ++stamp_[vh.idx()];
+  }
+
+  static constexpr int kMaxSupport = 2 * Influences::kCapacity;
+
+  Mesh& mesh_;
+  OpenMesh::VPropHandleT<Influences> h_inf_;
+  std::vector<Pose> poses_;
+  int P_ = 0;
+  std::vector<Eigen::Vector3d> posed_;
+  std::vector<PoseQuadric> quadric_;
+  std::vector<uint32_t> stamp_;
+  std::vector<CacheEntry> cache_;
+  bool prepared_ = false;
+
+  int max_influences_ = Influences::kCapacity;
+  CapStrategy strategy_ = CapStrategy::Greedy;
+  bool placement_ = false;
+  bool fold_check_ = false;
+  double fold_cos_ = 0.0;
+  int max_iterations_ = 8;
+
+  bool pending_ = false;
+  CollapseResult pending_result_;
+
+  // Scratch for the edge being solved (kept to avoid allocating per solve).
+  int m_ = 0;
+  std::array<int, kMaxSupport> joints_{};
+  std::vector<PoseQuadric> Q_;
+  std::vector<Affine3> M_;
+  WeightSolver weights_;
+  mutable Stats stats_;
+};
+
+/// Name of the mesh property holding the shared solver.
+inline constexpr const char* kSolverProperty = "m:omsk_collapse_solver";
+
+/** The solver shared by all modules on \p mesh, created on first use. \p created tells the caller it
+ *  made the property (and so must remove it when done). */
+template <typename Mesh>
+std::shared_ptr<CollapseSolverT<Mesh>> shared_solver(Mesh& mesh, bool& created) {
+  OpenMesh::MPropHandleT<std::shared_ptr<CollapseSolverT<Mesh>>> h;
+  created = false;
+  if (!mesh.get_property_handle(h, kSolverProperty)) {
+    mesh.add_property(h, kSolverProperty);
+    created = true;
+  }
+  auto& sp = mesh.property(h);
+  if (!sp) sp = std::make_shared<CollapseSolverT<Mesh>>(mesh);
+  return sp;
+}
+
+/// Removes the solver property (called by the module that created it).
+template <typename Mesh>
+void release_shared_solver(Mesh& mesh) {
+  OpenMesh::MPropHandleT<std::shared_ptr<CollapseSolverT<Mesh>>> h;
+  if (mesh.get_property_handle(h, kSolverProperty)) mesh.remove_property(h);
+}
+
+}  // namespace OpenMeshSkinned

@@ -1,0 +1,279 @@
+#include "OpenMeshSkinned/Solver/WeightSolver.hh"
+
+#include <ceres/ceres.h>
+#include <ceres/sphere_manifold.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <Eigen/QR>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace OpenMeshSkinned {
+namespace {
+
+constexpr int kMax = WeightSolver::kMaxJoints;
+using Mat = WeightSolver::Matrix;
+using Vec = WeightSolver::Vector;
+using Mask = Eigen::Matrix<bool, Eigen::Dynamic, 1, 0, kMax, 1>;
+
+// Residual r(s) = U (s .* s) - z with U^T U = H + mu I and U^T z = mu a0, so that
+// |r|^2 = a^T (H + mu I) a - 2 mu a0^T a + const: the weight objective, as a least-squares problem in s.
+// Jacobian dr/ds = U diag(2 s).
+class SphereWeightCost final : public ceres::CostFunction {
+public:
+  explicit SphereWeightCost(int n) : n_(n) {
+    set_num_residuals(n);
+    mutable_parameter_block_sizes()->push_back(n);
+  }
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor, kMax, kMax> U;
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMax, 1> z;
+
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const double* s = parameters[0];
+    for (int i = 0; i < n_; ++i) {
+      double r = -z[i];
+      for (int k = 0; k < n_; ++k) r += U(i, k) * s[k] * s[k];
+      residuals[i] = r;
+    }
+    if (jacobians && jacobians[0])
+      for (int i = 0; i < n_; ++i)
+        for (int k = 0; k < n_; ++k) jacobians[0][i * n_ + k] = U(i, k) * 2.0 * s[k];
+    return true;
+  }
+
+private:
+  int n_;
+};
+
+}  // namespace
+
+// One problem per size, built once and reused: only the cost's data and the start change between solves.
+struct WeightSolver::CeresCache {
+  struct Slot {
+    std::unique_ptr<ceres::Problem> problem;
+    SphereWeightCost* cost = nullptr;  // owned by problem
+    std::array<double, kMax> s{};
+  };
+  std::array<Slot, kMax + 1> slots;
+  ceres::Solver::Options options;
+
+  CeresCache() {
+    options.linear_solver_type = ceres::DENSE_QR;
+    options.logging_type = ceres::SILENT;
+    options.minimizer_progress_to_stdout = false;
+    options.max_num_iterations = 100;
+    options.function_tolerance = 1e-14;
+    options.gradient_tolerance = 1e-16;
+    options.parameter_tolerance = 1e-12;
+    options.num_threads = 1;
+  }
+
+  Slot& slot(int n) {
+    Slot& sl = slots[n];
+    if (!sl.problem) {
+      ceres::Problem::Options po;
+      sl.problem = std::make_unique<ceres::Problem>(po);
+      sl.cost = new SphereWeightCost(n);
+      sl.problem->AddResidualBlock(sl.cost, nullptr, sl.s.data());
+      sl.problem->SetManifold(sl.s.data(), new ceres::SphereManifold<ceres::DYNAMIC>(n));
+    }
+    return sl;
+  }
+};
+
+WeightSolver::WeightSolver() : ceres_(std::make_unique<CeresCache>()) {}
+WeightSolver::~WeightSolver() = default;
+
+bool WeightSolver::solve_kkt(const Mat& H, const Vec& start, double mu, const Mask& active, Vec& alpha,
+                             bool allow_negative) const {
+  const int m = static_cast<int>(H.rows());
+  std::array<int, kMax> idx;
+  int r = 0;
+  for (int k = 0; k < m; ++k)
+    if (active[k]) idx[r++] = k;
+  // Stationarity of a^T (H + mu I) a - 2 mu a0^T a with multiplier l for sum(a) = 1:
+  //   [ 2(H + mu I)  1 ] [a]   [ 2 mu a0 ]
+  //   [     1^T      0 ] [l] = [    1    ]
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMax + 1, kMax + 1> K(r + 1, r + 1);
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMax + 1, 1> rhs(r + 1);
+  for (int i = 0; i < r; ++i) {
+    for (int j = 0; j < r; ++j) K(i, j) = 2.0 * H(idx[i], idx[j]);
+    K(i, i) += 2.0 * mu;
+    K(i, r) = K(r, i) = 1.0;
+    rhs[i] = 2.0 * mu * start[idx[i]];
+  }
+  K(r, r) = 0.0;
+  rhs[r] = 1.0;
+  const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMax + 1, 1> x = K.fullPivLu().solve(rhs);
+  alpha.setZero(m);
+  for (int i = 0; i < r; ++i)
+    if (!std::isfinite(x[i])) return false;
+  if (allow_negative) {
+    for (int i = 0; i < r; ++i) alpha[idx[i]] = x[i] < -1e-12 ? x[i] : std::max(0.0, x[i]);
+    return true;
+  }
+  double sum = 0.0;
+  for (int i = 0; i < r; ++i) {
+    if (x[i] < -1e-12) return false;
+    alpha[idx[i]] = std::max(0.0, x[i]);
+    sum += alpha[idx[i]];
+  }
+  if (!(sum > 0.0)) return false;
+  alpha /= sum;
+  return true;
+}
+
+void WeightSolver::solve_ceres(const Mat& H, const Vec& start, double mu, const Mask& active, Vec& alpha) {
+  const int m = static_cast<int>(H.rows());
+  std::array<int, kMax> idx;
+  int r = 0;
+  for (int k = 0; k < m; ++k)
+    if (active[k]) idx[r++] = k;
+  alpha.setZero(m);
+  if (r == 1) {
+    alpha[idx[0]] = 1.0;
+    return;
+  }
+  Mat Hr(r, r);
+  Vec a0(r);
+  for (int i = 0; i < r; ++i) {
+    for (int j = 0; j < r; ++j) Hr(i, j) = H(idx[i], idx[j]);
+    Hr(i, i) += mu;
+    a0[i] = start[idx[i]];
+  }
+  CeresCache::Slot& sl = ceres_->slot(r);
+  const Eigen::LLT<Mat> llt(Hr);
+  sl.cost->U = llt.matrixU();
+  sl.cost->z = llt.matrixU().transpose().solve(Vec(mu * a0));
+  // Start inside the simplex: where a start weight is 0, its square root would sit on a stationary point
+  // of the parametrisation (d a / d s = 0) and never move, so every joint starts with a little weight.
+  double norm = 0.0;
+  for (int i = 0; i < r; ++i) {
+    sl.s[i] = std::sqrt(std::max(a0[i], 0.0) + 1e-3);
+    norm += sl.s[i] * sl.s[i];
+  }
+  norm = std::sqrt(norm);
+  for (int i = 0; i < r; ++i) sl.s[i] /= norm;
+  ceres::Solver::Summary summary;
+  ceres::Solve(ceres_->options, sl.problem.get(), &summary);
+  ++stats_.ceres_calls;
+  double sum = 0.0;
+  for (int i = 0; i < r; ++i) sum += sl.s[i] * sl.s[i];
+  for (int i = 0; i < r; ++i) alpha[idx[i]] = sl.s[i] * sl.s[i] / sum;
+}
+
+bool WeightSolver::certify(const Mat& H, const Vec& start, double mu, const Mask& active, const Vec& alpha) const {
+  // The problem is strictly convex (H is PSD and mu > 0), so a point meeting the KKT conditions is THE
+  // optimum. With g the gradient, the multiplier of sum(a) = 1 is g_k on the support, and every joint
+  // off the support must have g_k >= that multiplier (moving weight onto it cannot help).
+  const int m = static_cast<int>(H.rows());
+  const Vec g = 2.0 * (H * alpha) + 2.0 * mu * (alpha - start);
+  double lambda = 0.0;
+  int n = 0;
+  for (int k = 0; k < m; ++k)
+    if (active[k] && alpha[k] > 0.0) {
+      lambda += g[k];
+      ++n;
+    }
+  if (n == 0) return false;
+  lambda /= n;
+  const double tol = 1e-9 * (std::abs(lambda) + g.cwiseAbs().maxCoeff() + 1e-300);
+  for (int k = 0; k < m; ++k)
+    if (active[k] && alpha[k] == 0.0 && g[k] < lambda - tol) return false;
+  return true;
+}
+
+double WeightSolver::solve(const Mat& H, const Vec& start, Vec& alpha, const Mask* active_in) {
+  const int m = static_cast<int>(H.rows());
+  ++stats_.solves;
+  const Mask active = active_in ? *active_in : Mask::Constant(m, true);
+  const double mu = std::max(reg_ * H.diagonal().cwiseAbs().sum() / std::max(m, 1), 1e-300);
+
+  // The closed form (paper eq. 4) on a shrinking support: drop the most negative joint and solve again.
+  // Usually this lands on the optimum, which certify() then proves; only when it cannot does Ceres run.
+  Mask support = active;
+  Vec x;
+  for (int round = 0; round < m; ++round) {
+    if (solve_kkt(H, start, mu, support, x, /*allow_negative=*/true)) {
+      int worst = -1;
+      for (int k = 0; k < m; ++k)
+        if (support[k] && x[k] < 0.0 && (worst < 0 || x[k] < x[worst])) worst = k;
+      if (worst < 0) {
+        alpha = x;
+        if (certify(H, start, mu, active, alpha)) {
+          ++stats_.kkt_feasible;
+          return alpha.dot(H * alpha);
+        }
+        break;
+      }
+      support[worst] = false;
+      if (support.count() == 0) break;
+    } else {
+      break;
+    }
+  }
+
+  solve_ceres(H, start, mu, active, alpha);
+  // The sphere parametrisation reaches zero weights only asymptotically: take the joints Ceres kept and
+  // finish exactly with the closed form on them when that stays feasible and is no worse.
+  const double e_ceres = alpha.dot(H * alpha) + mu * (alpha - start).squaredNorm();
+  Mask kept = active;
+  for (int k = 0; k < m; ++k) kept[k] = active[k] && alpha[k] > 1e-6;
+  Vec polished;
+  if (kept.count() > 0 && solve_kkt(H, start, mu, kept, polished, false)) {
+    const double e_pol = polished.dot(H * polished) + mu * (polished - start).squaredNorm();
+    if (e_pol <= e_ceres * (1.0 + 1e-9) + 1e-300) alpha = polished;
+  }
+  for (int k = 0; k < m; ++k)
+    if (alpha[k] < 1e-9) alpha[k] = 0.0;
+  alpha /= alpha.sum();
+  return alpha.dot(H * alpha);
+}
+
+double WeightSolver::solve_capped(const Mat& H, const Vec& start, int cap, CapStrategy strategy, Vec& alpha) {
+  const int m = static_cast<int>(H.rows());
+  double e = solve(H, start, alpha);
+  int nnz = static_cast<int>((alpha.array() > 0.0).count());
+  if (nnz <= cap) return e;
+
+  Mask active(m);
+  for (int k = 0; k < m; ++k) active[k] = alpha[k] > 0.0;
+  if (strategy == CapStrategy::TopN) {
+    std::array<int, kMax> order;
+    for (int k = 0; k < m; ++k) order[k] = k;
+    std::sort(order.begin(), order.begin() + m, [&](int a, int b) { return alpha[a] > alpha[b]; });
+    active.setConstant(false);
+    for (int i = 0; i < cap; ++i) active[order[i]] = true;
+    return solve(H, start, alpha, &active);
+  }
+  // Greedy: try removing each remaining joint; keep the removal that hurts least.
+  Vec trial, best_alpha = alpha;
+  while (nnz > cap) {
+    double best = std::numeric_limits<double>::infinity();
+    int best_k = -1;
+    for (int k = 0; k < m; ++k) {
+      if (!active[k]) continue;
+      active[k] = false;
+      const double ek = solve(H, start, trial, &active);
+      active[k] = true;
+      if (ek < best) {
+        best = ek;
+        best_k = k;
+        best_alpha = trial;
+      }
+    }
+    active[best_k] = false;
+    alpha = best_alpha;
+    e = best;
+    // The re-solve may itself have zeroed more joints.
+    for (int k = 0; k < m; ++k) active[k] = active[k] && alpha[k] > 0.0;
+    nnz = static_cast<int>(active.count());
+  }
+  return e;
+}
+
+}  // namespace OpenMeshSkinned

@@ -1,0 +1,101 @@
+#pragma once
+// Shared test helpers: real characters, invariant checks, and a flip-watching module.
+
+#include <OpenMeshSkinned/IO/Import.hh>
+#include <OpenMeshSkinned/Skin/LinearBlendSkinning.hh>
+#include <OpenMeshSkinned/Skin/SkinProperties.hh>
+
+#include <OpenMesh/Tools/Decimater/ModBaseT.hh>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace omsk_test {
+
+using Mesh = OpenMeshSkinned::SkinnedMesh;
+
+inline std::string model(const std::string& rel) { return std::string(OMSK_TEST_MODELS) + "/" + rel; }
+
+/// A real character with K example poses from its first clip.
+inline Mesh load_character(const std::string& rel, int poses = 8) {
+  Mesh mesh;
+  OpenMeshSkinned::import_skinned(model(rel), mesh);
+  auto& clips = OpenMeshSkinned::clips(mesh);
+  if (!clips.empty())
+    OpenMeshSkinned::example_poses(mesh) =
+        OpenMeshSkinned::sample_poses_evenly(OpenMeshSkinned::skeleton(mesh), clips[0], poses);
+  return mesh;
+}
+
+/// Weights >= 0, sum 1 within 1e-6, at most \p cap influences, joints in range; manifold vertices.
+template <typename M>
+void expect_valid_skin(const M& mesh, int cap) {
+  const auto h = OpenMeshSkinned::influences_handle(mesh);
+  const int nj = OpenMeshSkinned::skeleton(mesh).size();
+  int bad = 0;
+  for (auto vh : mesh.vertices()) {
+    const auto& inf = mesh.property(h, vh);
+    bool ok = !inf.empty() && inf.size() <= cap && std::abs(inf.sum() - 1.0) <= 1e-6 && mesh.is_manifold(vh);
+    for (const auto& jw : inf) ok = ok && jw.weight >= 0.0 && jw.joint >= 0 && jw.joint < nj;
+    if (!ok && bad++ < 5) ADD_FAILURE() << "vertex " << vh.idx() << " has an invalid skin or is not manifold";
+  }
+  EXPECT_EQ(bad, 0);
+}
+
+/** Binary module that refuses nothing and records, for every collapse, whether any surviving face around it
+ *  turned by more than max_angle in any example pose. Add it after the modules under test. */
+template <typename M>
+class FlipWatcherT : public OpenMesh::Decimater::ModBaseT<M> {
+public:
+  DECIMATING_MODULE(FlipWatcherT, M, FlipWatcher);
+  explicit FlipWatcherT(M& mesh) : Base(mesh, true) {}
+
+  double max_angle_deg = 90.0;
+  size_t collapses = 0;
+  size_t flipped = 0;
+
+  void preprocess_collapse(const CollapseInfo& ci) override {
+    faces_.clear();
+    before_.clear();
+    for (auto c : {ci.v0, ci.v1})
+      for (auto fh : Base::mesh().vf_range(c)) {
+        bool removed = false;
+        for (auto v : Base::mesh().fv_range(fh)) removed |= (v == (c == ci.v0 ? ci.v1 : ci.v0));
+        if (!removed && std::find(faces_.begin(), faces_.end(), fh) == faces_.end()) faces_.push_back(fh);
+      }
+    before_ = normals();
+  }
+  void postprocess_collapse(const CollapseInfo&) override {
+    ++collapses;
+    const auto after = normals();
+    const double min_cos = std::cos(max_angle_deg * M_PI / 180.0) - 1e-9;
+    for (size_t i = 0; i < after.size(); ++i)
+      if (before_[i].norm() > 0 && (after[i].norm() == 0 || after[i].normalized().dot(before_[i].normalized()) < min_cos)) {
+        ++flipped;
+        break;
+      }
+  }
+
+private:
+  std::vector<Eigen::Vector3d> normals() {
+    const auto& m = Base::mesh();
+    const auto h = OpenMeshSkinned::influences_handle(m);
+    std::vector<Eigen::Vector3d> out;
+    for (const auto& pose : OpenMeshSkinned::example_poses(m))
+      for (auto fh : faces_) {
+        Eigen::Vector3d p[3];
+        int k = 0;
+        for (auto v : m.fv_range(fh))
+          p[k++] = OpenMeshSkinned::skin_point(OpenMeshSkinned::to_eigen(m.point(v)), m.property(h, v), pose);
+        out.push_back((p[1] - p[0]).cross(p[2] - p[0]));
+      }
+    return out;
+  }
+  std::vector<typename M::FaceHandle> faces_;
+  std::vector<Eigen::Vector3d> before_;
+};
+
+}  // namespace omsk_test
