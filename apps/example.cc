@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
     decimater.add(cap);
     decimater.add(fold);
     decimater.module(cap).set_max_influences(4);
-    decimater.module(fold).set_max_angle(60.0);
+    decimater.module(fold).set_max_angle(90.0);
     if (!decimater.initialize()) throw std::runtime_error("decimater did not initialize");
 
     const size_t faces_before = mesh.n_faces();

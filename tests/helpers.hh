@@ -99,3 +99,62 @@ private:
 };
 
 }  // namespace omsk_test
+
+#include <OpenMeshSkinned/Decimater/ModSkinnedFoldOverT.hh>
+#include <OpenMeshSkinned/Decimater/ModSkinnedQuadricT.hh>
+#include <OpenMeshSkinned/Decimater/ModWeightCapT.hh>
+#include <OpenMeshSkinned/Eval/SurfaceDistance.hh>
+
+#include <OpenMesh/Tools/Decimater/DecimaterT.hh>
+
+namespace omsk_test {
+
+struct Modules {
+  bool quadric = true;
+  bool cap = true;
+  bool fold = true;
+  int max_influences = 4;
+  double max_angle = 90.0;
+};
+
+struct RunResult {
+  size_t faces_before = 0, faces_after = 0, collapses = 0, flipped = 0, forced = 0, fallbacks = 0;
+};
+
+/// Decimates \p mesh to \p ratio of its faces with the chosen modules and a FlipWatcher after them.
+inline RunResult decimate(Mesh& mesh, double ratio, const Modules& m = {}) {
+  using namespace OpenMeshSkinned;
+  OpenMesh::Decimater::DecimaterT<Mesh> dec(mesh);
+  typename ModSkinnedQuadricT<Mesh>::Handle hq;
+  typename ModWeightCapT<Mesh>::Handle hc;
+  typename ModSkinnedFoldOverT<Mesh>::Handle hf;
+  typename FlipWatcherT<Mesh>::Handle hw;
+  if (m.quadric) dec.add(hq);
+  if (m.cap) dec.add(hc);
+  if (m.fold) dec.add(hf);
+  dec.add(hw);
+  if (m.cap) dec.module(hc).set_max_influences(m.max_influences);
+  if (m.fold) dec.module(hf).set_max_angle(m.max_angle);
+  dec.module(hw).max_angle_deg = m.max_angle;
+  EXPECT_TRUE(dec.initialize());
+  RunResult r;
+  r.faces_before = mesh.n_faces();
+  dec.decimate_to_faces(0, static_cast<size_t>(ratio * r.faces_before));
+  r.collapses = dec.module(hw).collapses;
+  r.flipped = dec.module(hw).flipped;
+  if (m.quadric) {
+    r.forced = dec.module(hq).solver().stats().forced_flips;
+    r.fallbacks = dec.module(hq).solver().stats().placement_fallbacks;
+  }
+  mesh.garbage_collection();
+  r.faces_after = mesh.n_faces();
+  return r;
+}
+
+/// RMS surface distance (fraction of the rest bounding-box diagonal) between two meshes in one pose.
+inline double posed_rms(const Mesh& original, const Mesh& lod, const OpenMeshSkinned::Pose& pose) {
+  using namespace OpenMeshSkinned;
+  return surface_distance(posed_soup(original, pose), posed_soup(lod, pose), 20000).rms / bbox_diagonal(original);
+}
+
+}  // namespace omsk_test

@@ -1,1 +1,151 @@
-TEST(Placeholder, X) {}
+#include "helpers.hh"
+
+#include <OpenMeshSkinned/Mesh/Procedural.hh>
+#include <OpenMeshSkinned/Solver/CollapseSolverT.hh>
+
+#include <OpenMesh/Tools/Decimater/DecimaterT.hh>
+#include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
+
+using namespace OpenMeshSkinned;
+using omsk_test::Mesh;
+using CI = OpenMesh::Decimater::CollapseInfoT<Mesh>;
+
+namespace {
+
+// A flat grid in z = 0 over [0,1]^2, two joints, weight on joint 1 equal to x. Pose 0 is the bind pose;
+// in pose 1 joint 1 moves by +d along z, so the posed surface is the plane z = d x. The merged vertex of
+// any interior edge fits both poses exactly iff its weight on joint 1 equals its x.
+Mesh two_joint_sheet(int n, double d) {
+  Mesh mesh;
+  mesh.request_vertex_status();
+  mesh.request_edge_status();
+  mesh.request_face_status();
+  const auto h = add_skin(mesh);
+  Joint j0, j1;
+  j0.name = "j0";
+  j1.name = "j1";
+  j1.parent = 0;
+  skeleton(mesh).joints = {j0, j1};
+  std::vector<Mesh::VertexHandle> vh;
+  for (int i = 0; i <= n; ++i)
+    for (int k = 0; k <= n; ++k) {
+      const double x = double(k) / n, y = double(i) / n;
+      auto v = mesh.add_vertex(Mesh::Point(x, y, 0));
+      Influences inf;
+      if (x < 1.0) inf.push(0, 1.0 - x);
+      if (x > 0.0) inf.push(1, x);
+      inf.sort();
+      mesh.property(h, v) = inf;
+      vh.push_back(v);
+    }
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < n; ++k) {
+      auto a = vh[i * (n + 1) + k], b = vh[i * (n + 1) + k + 1], c = vh[(i + 1) * (n + 1) + k], e = vh[(i + 1) * (n + 1) + k + 1];
+      mesh.add_face(a, b, e);
+      mesh.add_face(a, e, c);
+    }
+  Pose bent = Pose::identity(2);
+  bent.joint[1](2, 3) = d;
+  example_poses(mesh) = {Pose::identity(2), bent};
+  return mesh;
+}
+
+Mesh::HalfedgeHandle interior_halfedge(const Mesh& mesh) {
+  for (auto heh : mesh.halfedges()) {
+    const auto a = mesh.point(mesh.from_vertex_handle(heh)), b = mesh.point(mesh.to_vertex_handle(heh));
+    if (!mesh.is_boundary(mesh.edge_handle(heh)) && !mesh.is_boundary(mesh.from_vertex_handle(heh)) &&
+        !mesh.is_boundary(mesh.to_vertex_handle(heh)) && a[0] != b[0] && a[0] > 0.2 && a[0] < 0.8)
+      return heh;
+  }
+  return {};
+}
+
+}  // namespace
+
+TEST(CollapseSolver, TwoJointSheetFindsTheWeightThatFitsEveryPose) {
+  Mesh mesh = two_joint_sheet(8, 0.5);
+  CollapseSolverT<Mesh> solver(mesh);
+  solver.prepare();
+  const auto heh = interior_halfedge(mesh);
+  ASSERT_TRUE(heh.is_valid());
+  CI ci(mesh, heh);
+  const CollapseResult& r = solver.solve(ci);
+  ASSERT_TRUE(r.valid);
+  EXPECT_NEAR(r.error, 0.0, 1e-12);
+  EXPECT_NEAR(r.weights.weight_of(1), r.position.x(), 1e-6);
+  EXPECT_NEAR(r.weights.sum(), 1.0, 1e-9);
+  EXPECT_NEAR(r.position.z(), 0.0, 1e-9);
+  // Plain averaging of the endpoints' weights is exact here too, but a position off the edge's midpoint
+  // must pull the weight along: the solver's weight follows its own x, not the endpoints'.
+}
+
+TEST(CollapseSolver, SinglePoseOptimumIsTheStaticQuadricOptimum) {
+  Mesh mesh = make_bending_cylinder(12, 12);
+  example_poses(mesh) = {Pose::identity(skeleton(mesh).size())};
+  CollapseSolverT<Mesh> solver(mesh);
+  solver.prepare();
+  int checked = 0;
+  for (auto heh : mesh.halfedges()) {
+    if (mesh.is_boundary(mesh.edge_handle(heh))) continue;
+    CI ci(mesh, heh);
+    const CollapseResult& r = solver.solve(ci);
+    Eigen::Matrix4d Q = solver.quadric(ci.v0, 0).matrix() + solver.quadric(ci.v1, 0).matrix();
+    const Eigen::Matrix3d A = Q.topLeftCorner<3, 3>();
+    if (A.jacobiSvd().singularValues()(2) < 1e-6 * A.norm()) continue;  // static QEM has no unique optimum
+    const Eigen::Vector3d opt = A.ldlt().solve(-Q.topRightCorner<3, 1>());
+    EXPECT_LE((r.position - opt).norm(), 1e-8 * (1.0 + opt.norm()));
+    if (++checked >= 50) break;
+  }
+  EXPECT_GT(checked, 10);
+}
+
+TEST(CollapseSolver, ConstraintsHoldForEveryEdgeOfARealCharacter) {
+  Mesh mesh = omsk_test::load_character("X/Testwuson.X", 6);
+  CollapseSolverT<Mesh> solver(mesh);
+  solver.set_max_influences(3);
+  solver.prepare();
+  for (auto heh : mesh.halfedges()) {
+    CI ci(mesh, heh);
+    const CollapseResult& r = solver.solve(ci);
+    ASSERT_TRUE(r.valid);
+    EXPECT_GE(r.error, 0.0);
+    EXPECT_LE(r.weights.size(), 3);
+    EXPECT_NEAR(r.weights.sum(), 1.0, 1e-9);
+    for (const auto& jw : r.weights) EXPECT_GT(jw.weight, 0.0);
+  }
+  // Each edge was solved once; the second halfedge of every edge came from the cache.
+  EXPECT_EQ(solver.stats().solves, mesh.n_edges());
+  EXPECT_EQ(solver.stats().cache_hits, mesh.n_edges());
+}
+
+TEST(CollapseSolver, CacheIsInvalidatedWhenAnEndpointChanges) {
+  Mesh mesh = two_joint_sheet(6, 0.5);
+  CollapseSolverT<Mesh> solver(mesh);
+  solver.set_placement(true);
+  solver.prepare();
+  const auto heh = interior_halfedge(mesh);
+  CI ci(mesh, heh);
+  solver.solve(ci);
+  solver.solve(ci);
+  EXPECT_EQ(solver.stats().solves, 1u);
+  // Collapse a neighbouring edge into one endpoint: the cached answer must not be reused.
+  Mesh::HalfedgeHandle other;
+  for (auto h : mesh.voh_range(ci.v1))
+    if (mesh.to_vertex_handle(h) != ci.v0 && mesh.is_collapse_ok(mesh.opposite_halfedge_handle(h))) {
+      other = mesh.opposite_halfedge_handle(h);
+      break;
+    }
+  ASSERT_TRUE(other.is_valid());
+  CI co(mesh, other);
+  solver.begin_collapse(co);
+  mesh.collapse(other);
+  solver.end_collapse(co);
+  const auto solves = solver.stats().solves;
+  const auto again = mesh.find_halfedge(ci.v0, ci.v1);
+  ASSERT_TRUE(again.is_valid());
+  CI cn(mesh, again);
+  solver.solve(cn);
+  EXPECT_EQ(solver.stats().solves, solves + 1);
+  solver.solve(cn);
+  EXPECT_EQ(solver.stats().solves, solves + 1);
+}

@@ -30,6 +30,7 @@ public:
     set_max_angle(90.0);
   }
   ~ModSkinnedFoldOverT() override {
+    solver_->release_deferred();
     if (owns_property_) release_shared_solver(Base::mesh());
   }
 

@@ -38,6 +38,7 @@ public:
   }
   ~ModSkinnedQuadricT() override {
     solver_->set_placement(false);
+    solver_->release_deferred();
     if (owns_property_) release_shared_solver(Base::mesh());
   }
 

@@ -32,6 +32,7 @@ public:
   }
   ~ModWeightCapT() override {
     solver_->set_max_influences(Influences::kCapacity);
+    solver_->release_deferred();
     if (owns_property_) release_shared_solver(Base::mesh());
   }
 

@@ -47,6 +47,9 @@ struct CollapseSolverStats {
   size_t solves = 0;       ///< edges actually solved
   size_t cache_hits = 0;   ///< answered from the cache
   size_t collapses = 0;
+  size_t placement_fallbacks = 0;  ///< collapses whose solved position was stale and was replaced
+  size_t forced_flips = 0;         ///< collapses DecimaterT made although every placement flips a face
+  size_t deferred = 0;             ///< vertices held back until DecimaterT re-asked them (stale verdicts)
   WeightSolverStats weights;
 };
 
@@ -201,15 +204,33 @@ public:
   void begin_collapse(const CollapseInfo& ci) {
     if (pending_) return;
     pending_ = true;
-    if (placement_) {
-      pending_result_ = solve(ci);
-      // DecimaterT does not re-ask binary modules when it pops a collapse, and the vertices around an
-      // earlier moved vertex may not have been re-asked either: check the placement again, now.
-      if (pending_result_.valid && fold_check_ && flips(ci, pending_result_.position, pending_result_.weights, fold_cos_)) {
-        ++stats_.placement_fallbacks;
-        pending_result_.valid = false;
+    pending_result_.valid = false;
+    ring_.clear();
+    for (auto vh : mesh_.vv_range(ci.v0)) ring_.push_back(vh);  // what DecimaterT re-asks afterwards
+    if (!placement_) return;
+    pending_result_ = solve(ci);
+    if (!fold_check_ || !pending_result_.valid || !flips(ci, pending_result_.position, pending_result_.weights, fold_cos_))
+      return;
+    // DecimaterT does not re-ask binary modules when it pops a collapse, and it re-asks only the vertices
+    // around v0 after each collapse, not those around a moved v1: the verdict may be stale. Place the
+    // vertex where it flips nothing now, trying the solved weights at the endpoints and the midpoint,
+    // then v1 as it is.
+    ++stats_.placement_fallbacks;
+    const Eigen::Vector3d p0 = to_eigen(mesh_.point(ci.v0)), p1 = to_eigen(mesh_.point(ci.v1));
+    const Influences solved = pending_result_.weights;
+    const Influences& w0 = mesh_.property(h_inf_, ci.v0);
+    const Influences& w1 = mesh_.property(h_inf_, ci.v1);
+    const std::pair<Eigen::Vector3d, const Influences*> candidates[] = {
+        {p1, &solved}, {Eigen::Vector3d(0.5 * (p0 + p1)), &solved}, {p0, &solved}, {p1, &w1}, {p0, &w0}};
+    for (const auto& [p, w] : candidates) {
+      if (w->size() <= max_influences_ && !flips(ci, p, *w, fold_cos_)) {
+        pending_result_.position = p;
+        pending_result_.weights = *w;
+        return;
       }
     }
+    pending_result_.valid = false;
+    ++stats_.forced_flips;
   }
 
   void end_collapse(const CollapseInfo& ci) {
@@ -225,12 +246,27 @@ public:
       update_posed(v1);
       if (mesh_.has_face_normals())
         for (auto fh : mesh_.vf_range(v1)) mesh_.set_normal(fh, mesh_.calc_face_normal(fh));
+      if (fold_check_) defer_stale_neighbours(v1);
     } else if (mesh_.property(h_inf_, v1).size() > max_influences_) {
       reduce_vertex(v1);
     }
     ++stamp_[v1.idx()];
     ++stamp_[v0.idx()];
   }
+
+  /// Unlocks every vertex the solver deferred (see defer_stale_neighbours()); modules call it when done.
+  void release_deferred() {
+    OpenMesh::VPropHandleT<bool> h;
+    if (!mesh_.get_property_handle(h, kDeferredProperty)) return;
+    for (auto vh : mesh_.all_vertices())
+      if (mesh_.property(h, vh)) {
+        mesh_.status(vh).set_locked(false);
+        mesh_.property(h, vh) = false;
+      }
+  }
+
+  /// Named vertex property marking the vertices the solver locked (it survives garbage collection).
+  static constexpr const char* kDeferredProperty = "v:omsk_deferred";
 
   /** Reduces every vertex with more than max_influences() bones by the weight solve on its own quadrics
    *  at its own position (not by plain truncation). Returns how many vertices changed. */
@@ -258,9 +294,46 @@ private:
     uint32_t sa = 0, sb = 0;
     bool filled = false;
   };
-  struct Stats : CollapseSolverStats {
-    size_t placement_fallbacks = 0;
-  };
+  using Stats = CollapseSolverStats;
+
+  // Moving v1 changes faces of v1's old neighbours, but DecimaterT re-asks only v0's old neighbours: the
+  // others keep collapse verdicts made on the old geometry, and the fold-over check behind them is then
+  // stale. Lock them (DecimaterT skips a locked v0) until DecimaterT re-asks them as someone's support;
+  // never touch a vertex the user locked.
+  void defer_stale_neighbours(VertexHandle v1) {
+    if (!mesh_.get_property_handle(deferred_, kDeferredProperty)) {
+      mesh_.add_property(deferred_, kDeferredProperty);
+      for (auto vh : mesh_.all_vertices()) mesh_.property(deferred_, vh) = false;
+    }
+    for (VertexHandle s : ring_)
+      if (mesh_.property(deferred_, s)) {
+        mesh_.status(s).set_locked(false);
+        mesh_.property(deferred_, s) = false;
+      }
+    // A collapse z -> w is judged on the faces around z and around w, so z's verdict may be stale when
+    // v1 is within two rings of z. Only a verdict that would now be wrong matters: lock z when one of its
+    // collapses flips a face now (its stored one might be that one).
+    auto defer = [&](VertexHandle z) {
+      if (z == v1 || mesh_.status(z).locked() || std::find(ring_.begin(), ring_.end(), z) != ring_.end()) return;
+      Eigen::Vector3d rest;
+      Influences w;
+      for (auto h : mesh_.voh_range(z)) {
+        if (!mesh_.is_collapse_ok(h)) continue;
+        const CollapseInfo zc(mesh_, h);
+        placement_of(zc, rest, w);
+        if (flips(zc, rest, w, fold_cos_)) {
+          mesh_.status(z).set_locked(true);
+          mesh_.property(deferred_, z) = true;
+          ++stats_.deferred;
+          return;
+        }
+      }
+    };
+    for (auto z : mesh_.vv_range(v1)) {
+      defer(z);
+      for (auto y : mesh_.vv_range(z)) defer(y);
+    }
+  }
 
   void update_posed(VertexHandle v) {
     const Eigen::Vector3d rest = to_eigen(mesh_.point(v));
@@ -302,7 +375,10 @@ private:
   }
 
   // Sum_j B_j^T A_j B_j v = -Sum_j B_j^T (A_j t_j + b_j), B_j, t_j the blended matrix of pose j.
-  bool vertex_step(const WeightSolver::Vector& a, Eigen::Vector3d& v) const {
+  // Directions the quadrics barely constrain (along a straight crease, across a flat patch) are left at
+  // the reference point \p ref (Lindstrom's truncated pseudo-inverse): solving them exactly would fling
+  // the vertex far along a valley of near-zero error. Returns false when nothing is constrained.
+  bool vertex_step(const WeightSolver::Vector& a, const Eigen::Vector3d& ref, Eigen::Vector3d& v) const {
     Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
     Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
     for (int j = 0; j < P_; ++j) {
@@ -314,12 +390,14 @@ private:
       A += R.transpose() * Aj * R;
       rhs -= R.transpose() * (Aj * t + Q_[j].b());
     }
-    // Well-conditioned only: a flat or straight neighbourhood leaves directions unconstrained, and then
-    // the caller picks among the endpoints and the midpoint instead.
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(A);
     const Eigen::Vector3d ev = es.eigenvalues();
-    if (!(ev[0] > 1e-8 * std::max(ev[2], 1e-300))) return false;
-    v = es.eigenvectors() * ((es.eigenvectors().transpose() * rhs).cwiseQuotient(ev));
+    if (!(ev[2] > 0.0)) return false;
+    const Eigen::Vector3d r = es.eigenvectors().transpose() * (rhs - A * ref);
+    Eigen::Vector3d d = Eigen::Vector3d::Zero();
+    for (int i = 0; i < 3; ++i)
+      if (ev[i] > kPseudoInverseCutoff * ev[2]) d[i] = r[i] / ev[i];
+    v = ref + es.eigenvectors() * d;
     return v.allFinite();
   }
 
@@ -377,12 +455,15 @@ private:
 
   static int count_nonzero(const WeightSolver::Vector& a) { return static_cast<int>((a.array() > 0.0).count()); }
 
-  // Best of the endpoints and the midpoint for fixed weights: the fallback for an unconstrained vertex.
-  Eigen::Vector3d best_candidate(const Eigen::Vector3d& pa, const Eigen::Vector3d& pb, const WeightSolver::Vector& a) const {
-    const Eigen::Vector3d cand[3] = {pa, pb, 0.5 * (pa + pb)};
-    int best = 2;
-    double be = energy(cand[2], a);
-    for (int i = 0; i < 2; ++i) {
+  // The vertex step, then the best of it, the endpoints and the midpoint: the truncated solve is the
+  // optimum only along the constrained directions, and a fully singular system has no solve at all.
+  Eigen::Vector3d place(const Eigen::Vector3d& pa, const Eigen::Vector3d& pb, const WeightSolver::Vector& a) const {
+    const Eigen::Vector3d mid = 0.5 * (pa + pb);
+    Eigen::Vector3d cand[4] = {mid, pa, pb, mid};
+    const int n = vertex_step(a, mid, cand[3]) ? 4 : 3;
+    int best = 0;
+    double be = energy(cand[0], a);
+    for (int i = 1; i < n; ++i) {
       const double ei = energy(cand[i], a);
       if (ei < be) {
         be = ei;
@@ -399,7 +480,7 @@ private:
     double e_prev = std::numeric_limits<double>::infinity();
     double e = e_prev;
     for (int it = 0; it < max_iterations_; ++it) {
-      if (!vertex_step(a, v)) v = best_candidate(pa, pb, a);
+      v = place(pa, pb, a);
       if (m_ == 1) return energy(v, a);
       weight_matrix(v, H);
       e = cap < m_ ? weights_.solve_capped(H, start, cap, strategy_, a) : weights_.solve(H, start, a);
@@ -417,7 +498,7 @@ private:
     WeightSolver::Matrix H;
     double e_prev = std::numeric_limits<double>::infinity();
     for (int it = 0; it < max_iterations_; ++it) {
-      if (!vertex_step(a, v)) v = best_candidate(pa, pb, a);
+      v = place(pa, pb, a);
       weight_matrix(v, H);
       const double e = weights_.solve(H, start, a, &active);
       if (!(e < e_prev * (1.0 - 1e-4))) break;
@@ -453,6 +534,8 @@ private:
   }
 
   static constexpr int kMaxSupport = 2 * Influences::kCapacity;
+  // Eigenvalues below this fraction of the largest count as unconstrained directions.
+  static constexpr double kPseudoInverseCutoff = 1e-3;
 
   Mesh& mesh_;
   OpenMesh::VPropHandleT<Influences> h_inf_;
@@ -472,6 +555,8 @@ private:
   int max_iterations_ = 8;
 
   bool pending_ = false;
+  std::vector<VertexHandle> ring_;
+  OpenMesh::VPropHandleT<bool> deferred_;
   CollapseResult pending_result_;
 
   // Scratch for the edge being solved (kept to avoid allocating per solve).
@@ -506,6 +591,8 @@ template <typename Mesh>
 void release_shared_solver(Mesh& mesh) {
   OpenMesh::MPropHandleT<std::shared_ptr<CollapseSolverT<Mesh>>> h;
   if (mesh.get_property_handle(h, kSolverProperty)) mesh.remove_property(h);
+  OpenMesh::VPropHandleT<bool> d;
+  if (mesh.get_property_handle(d, CollapseSolverT<Mesh>::kDeferredProperty)) mesh.remove_property(d);
 }
 
 }  // namespace OpenMeshSkinned

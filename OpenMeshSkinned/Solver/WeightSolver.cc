@@ -166,10 +166,11 @@ void WeightSolver::solve_ceres(const Mat& H, const Vec& start, double mu, const 
   for (int i = 0; i < r; ++i) alpha[idx[i]] = sl.s[i] * sl.s[i] / sum;
 }
 
-bool WeightSolver::certify(const Mat& H, const Vec& start, double mu, const Mask& active, const Vec& alpha) const {
+int WeightSolver::violated(const Mat& H, const Vec& start, double mu, const Mask& active, const Vec& alpha) const {
   // The problem is strictly convex (H is PSD and mu > 0), so a point meeting the KKT conditions is THE
   // optimum. With g the gradient, the multiplier of sum(a) = 1 is g_k on the support, and every joint
-  // off the support must have g_k >= that multiplier (moving weight onto it cannot help).
+  // off the support must have g_k >= that multiplier (moving weight onto it cannot help). Returns the
+  // joint that breaks this most, or -1 when none does.
   const int m = static_cast<int>(H.rows());
   const Vec g = 2.0 * (H * alpha) + 2.0 * mu * (alpha - start);
   double lambda = 0.0;
@@ -179,12 +180,36 @@ bool WeightSolver::certify(const Mat& H, const Vec& start, double mu, const Mask
       lambda += g[k];
       ++n;
     }
-  if (n == 0) return false;
+  if (n == 0) return -1;
   lambda /= n;
   const double tol = 1e-9 * (std::abs(lambda) + g.cwiseAbs().maxCoeff() + 1e-300);
+  int worst = -1;
   for (int k = 0; k < m; ++k)
-    if (active[k] && alpha[k] == 0.0 && g[k] < lambda - tol) return false;
-  return true;
+    if (active[k] && alpha[k] == 0.0 && g[k] < lambda - tol && (worst < 0 || g[k] < g[worst])) worst = k;
+  return worst;
+}
+
+bool WeightSolver::active_set(const Mat& H, const Vec& start, double mu, const Mask& active, Mask support,
+                              Vec& alpha) const {
+  // Primal active set on the paper's closed form: drop the most negative joint from the support, or add
+  // back the joint whose KKT condition fails most, until violated() finds none: the point is then optimal.
+  const int m = static_cast<int>(H.rows());
+  Vec x;
+  for (int round = 0; round < 4 * m + 4; ++round) {
+    if (support.count() == 0 || !solve_kkt(H, start, mu, support, x, /*allow_negative=*/true)) return false;
+    int worst = -1;
+    for (int k = 0; k < m; ++k)
+      if (support[k] && x[k] < 0.0 && (worst < 0 || x[k] < x[worst])) worst = k;
+    if (worst >= 0) {
+      support[worst] = false;
+      continue;
+    }
+    alpha = x;
+    const int add = violated(H, start, mu, active, alpha);
+    if (add < 0) return true;
+    support[add] = true;
+  }
+  return false;
 }
 
 double WeightSolver::solve(const Mat& H, const Vec& start, Vec& alpha, const Mask* active_in) {
@@ -193,38 +218,19 @@ double WeightSolver::solve(const Mat& H, const Vec& start, Vec& alpha, const Mas
   const Mask active = active_in ? *active_in : Mask::Constant(m, true);
   const double mu = std::max(reg_ * H.diagonal().cwiseAbs().sum() / std::max(m, 1), 1e-300);
 
-  // The closed form (paper eq. 4) on a shrinking support: drop the most negative joint and solve again.
-  // Usually this lands on the optimum, which certify() then proves; only when it cannot does Ceres run.
-  Mask support = active;
-  Vec x;
-  for (int round = 0; round < m; ++round) {
-    if (solve_kkt(H, start, mu, support, x, /*allow_negative=*/true)) {
-      int worst = -1;
-      for (int k = 0; k < m; ++k)
-        if (support[k] && x[k] < 0.0 && (worst < 0 || x[k] < x[worst])) worst = k;
-      if (worst < 0) {
-        alpha = x;
-        if (certify(H, start, mu, active, alpha)) {
-          ++stats_.kkt_feasible;
-          return alpha.dot(H * alpha);
-        }
-        break;
-      }
-      support[worst] = false;
-      if (support.count() == 0) break;
-    } else {
-      break;
-    }
+  if (!force_ceres_ && active_set(H, start, mu, active, active, alpha)) {
+    ++stats_.kkt_feasible;
+    return alpha.dot(H * alpha);
   }
 
   solve_ceres(H, start, mu, active, alpha);
-  // The sphere parametrisation reaches zero weights only asymptotically: take the joints Ceres kept and
-  // finish exactly with the closed form on them when that stays feasible and is no worse.
+  // The sphere parametrisation reaches zero weights only asymptotically (and slowly): take the joints
+  // Ceres kept as the starting support and finish exactly with the closed form.
   const double e_ceres = alpha.dot(H * alpha) + mu * (alpha - start).squaredNorm();
   Mask kept = active;
-  for (int k = 0; k < m; ++k) kept[k] = active[k] && alpha[k] > 1e-6;
+  for (int k = 0; k < m; ++k) kept[k] = active[k] && alpha[k] > 1e-4;
   Vec polished;
-  if (kept.count() > 0 && solve_kkt(H, start, mu, kept, polished, false)) {
+  if (active_set(H, start, mu, active, kept, polished)) {
     const double e_pol = polished.dot(H * polished) + mu * (polished - start).squaredNorm();
     if (e_pol <= e_ceres * (1.0 + 1e-9) + 1e-300) alpha = polished;
   }

@@ -8,10 +8,11 @@
  *  (the endpoints' average). mu is tiny: it plays the paper's min-norm offset, choosing among the many
  *  minimisers when poses are fewer than joints.
  *
- *  Without the bound a >= 0 the problem has a closed form (the paper's KKT system, eq. 4). It is tried
- *  on the full support, then with the most negative joint dropped, and so on; a non-negative answer that
- *  passes the KKT conditions of the bounded problem is the optimum (the problem is strictly convex).
- *  When no such answer is found, Ceres solves the problem on the unit sphere: a_k = s_k^2
+ *  Without the bound a >= 0 the problem has a closed form (the paper's KKT system, eq. 4). A primal
+ *  active-set loop around it (drop the most negative joint, add back a joint whose KKT condition fails)
+ *  usually ends on a point that passes the KKT conditions of the bounded problem, which is then the
+ *  optimum: the problem is strictly convex. When it does not (cycling, singular systems), Ceres solves
+ *  the problem on the unit sphere: a_k = s_k^2
  *  with |s| = 1 gives both a >= 0 and sum(a) = 1 exactly, with no penalty terms and no equality
  *  constraint (which Ceres does not have), and the sphere is a manifold Ceres supports natively.
  */
@@ -56,6 +57,10 @@ public:
   const WeightSolverStats& stats() const { return stats_; }
   void reset_stats() { stats_ = {}; }
 
+  /// Always run Ceres, skipping the closed form (to cross-check the two, and to benchmark Ceres).
+  void set_force_ceres(bool on) { force_ceres_ = on; }
+  bool force_ceres() const { return force_ceres_; }
+
   /// Relative size of mu against the mean diagonal of H.
   void set_regularization(double r) { reg_ = r; }
   double regularization() const { return reg_; }
@@ -64,13 +69,15 @@ private:
   using Mask = Eigen::Matrix<bool, Eigen::Dynamic, 1, 0, kMaxJoints, 1>;
   bool solve_kkt(const Matrix& H, const Vector& start, double mu, const Mask& active, Vector& alpha,
                  bool allow_negative) const;
-  bool certify(const Matrix& H, const Vector& start, double mu, const Mask& active, const Vector& alpha) const;
+  int violated(const Matrix& H, const Vector& start, double mu, const Mask& active, const Vector& alpha) const;
+  bool active_set(const Matrix& H, const Vector& start, double mu, const Mask& active, Mask support, Vector& alpha) const;
   void solve_ceres(const Matrix& H, const Vector& start, double mu, const Mask& active, Vector& alpha);
 
   struct CeresCache;
   std::unique_ptr<CeresCache> ceres_;
   WeightSolverStats stats_;
   double reg_ = 1e-7;
+  bool force_ceres_ = false;
 };
 
 }  // namespace OpenMeshSkinned
