@@ -23,21 +23,24 @@ using Mesh = OpenMeshSkinned::SkinnedMesh;
 
 int main(int argc, char** argv) {
   try {
+    // Arguments first, so that a typo fails at once and before any output exists.
+    const std::string out = argc > 2 ? argv[2] : argc > 1 ? "out.glb" : "omsk-example-out/leg.glb";
+    const double ratio = argc > 3 ? std::stod(argv[3]) : 0.1;
+    const int n_poses = argc > 4 ? std::stoi(argv[4]) : 8;
+    if (!(ratio > 0.0 && ratio <= 1.0)) throw std::runtime_error("RATIO must be in (0, 1]");
+    if (n_poses < 1) throw std::runtime_error("POSES must be at least 1");
+    const std::string ext = std::filesystem::path(out).extension().string();
+    if (ext != ".glb" && ext != ".gltf") throw std::runtime_error(out + ": output must end in .glb or .gltf");
+
     Mesh mesh;
-    std::string out = "omsk-example-out/leg.glb";
     if (argc > 1) {
       const auto report = OpenMeshSkinned::import_skinned(argv[1], mesh);
       for (const auto& w : report.warnings) std::cerr << argv[1] << ": warning: " << w << "\n";
-      out = argc > 2 ? argv[2] : "out.glb";
     } else {
       std::cout << "No input given: generating DeCoro's bending leg (2 bones, knee 0..90 degrees).\n";
       mesh = OpenMeshSkinned::make_bending_cylinder();
       std::filesystem::create_directories("omsk-example-out");
     }
-    const double ratio = argc > 3 ? std::stod(argv[3]) : 0.1;
-    const int n_poses = argc > 4 ? std::stoi(argv[4]) : 8;
-    if (!(ratio > 0.0 && ratio <= 1.0)) throw std::runtime_error("RATIO must be in (0, 1]");
-    if (n_poses < 1) throw std::runtime_error("POSES must be at least 1");
 
     // Example poses: evenly spaced over the first clip (the generated leg brings its own: 0 and 90 degrees).
     auto& clips = OpenMeshSkinned::clips(mesh);

@@ -91,7 +91,8 @@ TEST(CollapseSolver, SinglePoseOptimumIsTheStaticQuadricOptimum) {
     const CollapseResult& r = solver.solve(ci);
     Eigen::Matrix4d Q = solver.quadric(ci.v0, 0).matrix() + solver.quadric(ci.v1, 0).matrix();
     const Eigen::Matrix3d A = Q.topLeftCorner<3, 3>();
-    if (A.jacobiSvd().singularValues()(2) < 1e-6 * A.norm()) continue;  // static QEM has no unique optimum
+    // Well-conditioned only: the solver leaves nearly unconstrained directions at the midpoint.
+    if (A.jacobiSvd().singularValues()(2) < 1e-2 * A.jacobiSvd().singularValues()(0)) continue;
     const Eigen::Vector3d opt = A.ldlt().solve(-Q.topRightCorner<3, 1>());
     EXPECT_LE((r.position - opt).norm(), 1e-8 * (1.0 + opt.norm()));
     if (++checked >= 50) break;

@@ -1,1 +1,49 @@
-TEST(Placeholder, X) {}
+#include "helpers.hh"
+
+#include <OpenMeshSkinned/Mesh/Procedural.hh>
+
+using namespace OpenMeshSkinned;
+using omsk_test::Mesh;
+
+namespace {
+TriangleSoup plane(double z, int n) {
+  TriangleSoup s;
+  for (int i = 0; i <= n; ++i)
+    for (int k = 0; k <= n; ++k) s.points.emplace_back(double(k) / n, double(i) / n, z);
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < n; ++k) {
+      const int a = i * (n + 1) + k;
+      s.triangles.push_back({a, a + 1, a + n + 2});
+      s.triangles.push_back({a, a + n + 2, a + n + 1});
+    }
+  return s;
+}
+}  // namespace
+
+TEST(SurfaceDistance, MeshToItselfIsZero) {
+  const Mesh mesh = make_bending_cylinder(16, 16);
+  const auto soup = posed_soup(mesh, example_poses(mesh)[1]);
+  const auto d = surface_distance(soup, soup, 5000);
+  EXPECT_LT(d.hausdorff, 1e-12);
+  EXPECT_LT(d.rms, 1e-12);
+  EXPECT_GT(d.samples, 10000u);
+}
+
+TEST(SurfaceDistance, OffsetPlaneGivesTheOffset) {
+  const auto d = surface_distance(plane(0.0, 4), plane(0.25, 7), 5000);
+  EXPECT_NEAR(d.rms, 0.25, 1e-12);
+  EXPECT_NEAR(d.hausdorff, 0.25, 1e-12);
+}
+
+TEST(SurfaceDistance, ErrorGrowsAsTheLodShrinksOnARealCharacter) {
+  const Mesh original = omsk_test::load_character("X/Testwuson.X", 6);
+  const Pose held_out = sample_pose(skeleton(original), clips(original)[1], 0.37);  // another clip
+  double previous = -1.0;
+  for (double ratio : {0.5, 0.2, 0.05}) {
+    Mesh lod = original;
+    omsk_test::decimate(lod, ratio);
+    const double e = omsk_test::posed_rms(original, lod, held_out);
+    EXPECT_GT(e, previous) << "ratio " << ratio;
+    previous = e;
+  }
+}
