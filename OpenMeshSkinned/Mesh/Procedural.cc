@@ -153,7 +153,7 @@ SkinnedMesh make_square_column(int around, int along) {
                                    -Eigen::Vector3d::UnitZ()};
   Clip sway;
   sway.name = "sway";
-  sway.duration = 4.0;
+  sway.duration = 3.0;
   for (int b = 1; b < skel.size(); ++b) {
     Channel ch;
     ch.joint = b;
@@ -161,8 +161,6 @@ SkinnedMesh make_square_column(int around, int along) {
       ch.rotation_times.push_back(p);
       ch.rotations.emplace_back(Eigen::AngleAxisd(30.0 * M_PI / 180.0, axes[p]));
     }
-    ch.rotation_times.push_back(4.0);
-    ch.rotations.emplace_back(Eigen::AngleAxisd(30.0 * M_PI / 180.0, axes[0]));
     sway.channels.push_back(ch);
   }
   clips(mesh) = {sway};

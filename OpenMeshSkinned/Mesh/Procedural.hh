@@ -29,7 +29,7 @@ SkinnedMesh make_bending_cylinder(int around = 32, int along = 64);
 
 /** Landreneau & Schaefer's square column: 4 bones; \p around x \p along x 2 triangles (default 128 x 448
  *  x 2 = 114,688 as in their Table 1); four example poses bending it forward, back, left and right, and
- *  one clip "sway" through all of them. */
+ *  one clip "sway" (3 s) that passes through them at 0, 1, 2 and 3 s. */
 SkinnedMesh make_square_column(int around = 128, int along = 448);
 
 }  // namespace OpenMeshSkinned

@@ -1,0 +1,383 @@
+// skinned-decimate: LOD chains from skinned characters, judged in poses the decimater never saw.
+#include <OpenMeshSkinned/Decimater/ModSkinnedFoldOverT.hh>
+#include <OpenMeshSkinned/Decimater/ModSkinnedQuadricT.hh>
+#include <OpenMeshSkinned/Decimater/ModWeightCapT.hh>
+#include <OpenMeshSkinned/Eval/SurfaceDistance.hh>
+#include <OpenMeshSkinned/IO/ExportGltf.hh>
+#include <OpenMeshSkinned/IO/Import.hh>
+#include <OpenMeshSkinned/Mesh/Procedural.hh>
+#include <OpenMeshSkinned/Skin/PoseSchedule.hh>
+
+#include <OpenMesh/Tools/Decimater/DecimaterT.hh>
+#include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
+#include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
+#include <OpenMesh/Tools/Decimater/Observer.hh>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+namespace fs = std::filesystem;
+using Mesh = OpenMeshSkinned::SkinnedMesh;
+using Clock = std::chrono::steady_clock;
+using json = nlohmann::ordered_json;
+
+namespace {
+
+struct Options {
+  std::string input, output, report, pose_clip, method = "skinned";
+  double ratio = 0.0;
+  size_t faces = 0;
+  std::vector<double> lods;
+  int max_influences = 4;
+  int poses = 8;
+  bool quiet = false;
+  bool poses_given = false;
+  bool ratio_given = false;
+};
+
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+struct Lod {
+  double ratio = 0.0;
+  size_t faces = 0, vertices = 0;
+  double seconds = 0.0;
+  int max_influences = 0;
+  double rms = 0.0, hausdorff = 0.0;  // % of the rest-pose bounding-box diagonal
+  std::string file;
+};
+
+// Percent of collapses on a terminal, once the run has taken a second.
+class Progress : public OpenMesh::Decimater::Observer {
+public:
+  Progress(bool on, size_t total, std::string label)
+      : Observer(std::max<size_t>(1, total / 200)), on_(on), total_(std::max<size_t>(1, total)), label_(std::move(label)) {}
+  void set_done_before(size_t n) { before_ = n; }
+  void notify(size_t step) override {
+    if (!on_ || Clock::now() - start_ < std::chrono::seconds(1)) return;
+    std::fprintf(stderr, "\r%s: %3d%% of collapses", label_.c_str(), int(100.0 * (before_ + step) / total_));
+    shown_ = true;
+  }
+  ~Progress() override {
+    if (shown_) std::fprintf(stderr, "\r%*s\r", int(label_.size()) + 20, "");
+  }
+
+private:
+  bool on_;
+  size_t total_, before_ = 0;
+  std::string label_;
+  Clock::time_point start_ = Clock::now();
+  bool shown_ = false;
+};
+
+int max_influences_of(const Mesh& mesh) {
+  const auto h = OpenMeshSkinned::influences_handle(mesh);
+  int n = 0;
+  for (auto vh : mesh.vertices()) n = std::max(n, mesh.property(h, vh).size());
+  return n;
+}
+
+// Decimates a copy of \p input through every target in one pass (the multiresolution hierarchy: each
+// level continues from the previous one) and snapshots the mesh as it passes each target.
+std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vector<size_t>& targets,
+                                              const std::vector<double>& ratios, const Options& opt,
+                                              const std::string& method, const std::string& label) {
+  Mesh mesh = input;
+  OpenMesh::Decimater::DecimaterT<Mesh> dec(mesh);
+  OpenMeshSkinned::ModSkinnedQuadricT<Mesh>::Handle hq;
+  OpenMeshSkinned::ModSkinnedFoldOverT<Mesh>::Handle hf;
+  OpenMeshSkinned::ModWeightCapT<Mesh>::Handle hc;
+  OpenMesh::Decimater::ModQuadricT<Mesh>::Handle hs;
+  OpenMesh::Decimater::ModNormalFlippingT<Mesh>::Handle hn;
+  if (method == "skinned") {
+    dec.add(hq);
+    dec.add(hf);
+  } else {  // "static": OpenMesh's rest-pose quadric, endpoint placement and weights
+    dec.add(hs);
+    dec.add(hn);
+  }
+  dec.add(hc);
+  dec.module(hc).set_max_influences(opt.max_influences);
+  if (!dec.initialize()) throw std::runtime_error("the decimater did not initialize");
+  Progress progress(!opt.quiet && isatty(2), input.n_vertices() - targets.back() / 2, label);
+  dec.set_observer(&progress);
+
+  std::vector<std::pair<Lod, Mesh>> out;
+  const auto t0 = Clock::now();
+  size_t collapses = 0;
+  for (size_t i = 0; i < targets.size(); ++i) {
+    progress.set_done_before(collapses);
+    // decimate_to_faces counts deleted faces too until garbage collection, which would also renumber the
+    // vertices under the solver's feet: aim at the target plus the faces already deleted instead.
+    size_t live = 0;
+    for (auto fh : mesh.faces()) (void)fh, ++live;
+    collapses += dec.decimate_to_faces(0, targets[i] + (mesh.n_faces() - live));
+    if (method == "skinned") dec.module(hq).solver().release_deferred();  // give every vertex a chance next level
+    Lod lod;
+    lod.ratio = ratios[i];
+    lod.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    Mesh snap = mesh;
+    snap.garbage_collection();
+    for (auto vh : snap.vertices()) snap.status(vh).set_locked(false);
+    lod.faces = snap.n_faces();
+    lod.vertices = snap.n_vertices();
+    lod.max_influences = max_influences_of(snap);
+    out.emplace_back(lod, std::move(snap));
+  }
+  dec.set_observer(nullptr);
+  return out;
+}
+
+void evaluate(const Mesh& original, std::vector<std::pair<Lod, Mesh>>& chain, const std::vector<OpenMeshSkinned::Pose>& frames) {
+  const double diag = OpenMeshSkinned::bbox_diagonal(original);
+  for (auto& [lod, mesh] : chain) {
+    double sum_rms = 0.0, max_h = 0.0;
+    for (const auto& pose : frames) {
+      const auto d = OpenMeshSkinned::surface_distance(OpenMeshSkinned::posed_soup(original, pose),
+                                                       OpenMeshSkinned::posed_soup(mesh, pose), 20000);
+      sum_rms += d.rms;
+      max_h = std::max(max_h, d.hausdorff);
+    }
+    lod.rms = 100.0 * sum_rms / frames.size() / diag;
+    lod.hausdorff = 100.0 * max_h / diag;
+  }
+}
+
+std::string lod_path(const std::string& output, size_t i, size_t n) {
+  if (n == 1) return output;
+  const fs::path p(output);
+  return (p.parent_path() / (p.stem().string() + "_lod" + std::to_string(i + 1) + p.extension().string())).string();
+}
+
+void write_atomically(const std::string& path, const std::string& text) {
+  const std::string tmp = path + ".tmp" + std::to_string(::getpid());
+  {
+    std::ofstream f(tmp, std::ios::binary);
+    f << text;
+    if (!f) {
+      fs::remove(tmp);
+      throw std::runtime_error(path + ": cannot be written");
+    }
+  }
+  fs::rename(tmp, path);
+}
+
+// A folder we can create files in; checked before any work so a typo costs nothing.
+void check_writable(const std::string& path) {
+  const fs::path dir = fs::absolute(fs::path(path)).parent_path();
+  if (!fs::is_directory(dir)) throw UsageError(path + ": folder " + dir.string() + " does not exist");
+  const fs::path probe = dir / (".omsk-probe-" + std::to_string(::getpid()));
+  std::ofstream f(probe);
+  if (!f) throw UsageError(path + ": folder " + dir.string() + " is not writable");
+  f.close();
+  fs::remove(probe);
+}
+
+std::string fmt(double v, int prec) {
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(prec) << v;
+  return os.str();
+}
+
+void print_table(const std::string& title, const std::vector<std::pair<Lod, Mesh>>& chain, bool have_heldout) {
+  std::cout << title << "\n"
+            << "  " << std::left << std::setw(8) << "ratio" << std::right << std::setw(10) << "triangles"
+            << std::setw(10) << "vertices" << std::setw(10) << "seconds" << std::setw(10) << "max infl"
+            << std::setw(14) << (have_heldout ? "heldout RMS%" : "rest RMS%") << std::setw(15)
+            << (have_heldout ? "heldout Haus%" : "rest Haus%") << "\n";
+  for (const auto& [lod, mesh] : chain)
+    std::cout << "  " << std::left << std::setw(8) << fmt(lod.ratio, 4) << std::right << std::setw(10) << lod.faces
+              << std::setw(10) << lod.vertices << std::setw(10) << fmt(lod.seconds, 2) << std::setw(10)
+              << lod.max_influences << std::setw(14) << fmt(lod.rms, 4) << std::setw(15) << fmt(lod.hausdorff, 4)
+              << "\n";
+}
+
+// --pose-clip as a name or an index; -1 when not given.
+int resolve_clip(const std::vector<OpenMeshSkinned::Clip>& clips, const std::string& which, const std::string& name) {
+  if (which.empty()) return -1;
+  for (size_t c = 0; c < clips.size(); ++c)
+    if (clips[c].name == which) return int(c);
+  if (std::all_of(which.begin(), which.end(), ::isdigit) && which.size() < 9 && std::stoi(which) < int(clips.size()))
+    return std::stoi(which);
+  throw UsageError("--pose-clip " + which + ": no such clip in " + name + " (" + std::to_string(clips.size()) + " clips)");
+}
+
+json times_json(const std::vector<OpenMeshSkinned::Clip>& clips, const std::vector<OpenMeshSkinned::PoseTime>& t) {
+  json a = json::array();
+  for (const auto& p : t) a.push_back({{"clip", clips[p.clip].name}, {"time", p.time}});
+  return a;
+}
+
+// Runs one character through one method; prints the table; returns the report entry.
+json run_character(const Mesh& mesh, const std::string& name, const Options& opt, const std::string& method,
+                   const std::string& output, bool write_files) {
+  using namespace OpenMeshSkinned;
+  const auto& clips = OpenMeshSkinned::clips(mesh);
+  Mesh work = mesh;
+  PoseSchedule sched;
+  std::vector<Pose> heldout;
+  if (clips.empty()) {
+    if (opt.poses_given)
+      std::cerr << "skinned-decimate: warning: " << name
+                << " has no animation: --poses ignored, decimating and judging in the rest pose only\n";
+    example_poses(work) = {Pose::identity(skeleton(work).size())};
+    heldout = example_poses(work);
+  } else {
+    const int clip_index = resolve_clip(clips, opt.pose_clip, name);
+    sched = make_pose_schedule(clips, opt.poses, clip_index);
+    example_poses(work) = poses_at(skeleton(work), clips, sched.examples);
+    heldout = poses_at(skeleton(work), clips, sched.held_out.empty() ? sched.examples : sched.held_out);
+    if (!opt.quiet) {
+      std::cout << name << ": example poses at";
+      for (const auto& t : sched.examples) std::cout << " " << clips[t.clip].name << "@" << fmt(t.time, 3) << "s";
+      std::cout << "\n";
+    }
+  }
+
+  std::vector<double> ratios = opt.lods;
+  if (ratios.empty()) ratios = {opt.faces ? double(opt.faces) / mesh.n_faces() : opt.ratio};
+  std::vector<size_t> targets;
+  for (double r : ratios) targets.push_back(std::max<size_t>(1, static_cast<size_t>(std::llround(r * mesh.n_faces()))));
+  if (opt.faces && opt.lods.empty()) targets = {opt.faces};
+
+  auto chain = build_chain(work, targets, ratios, opt, method, name + " (" + method + ")");
+  evaluate(mesh, chain, heldout);
+  print_table(name + " — " + method + (clips.empty() ? ", rest pose only" : "") + ", " +
+                  std::to_string(mesh.n_faces()) + " triangles in",
+              chain, !clips.empty());
+
+  json lods = json::array();
+  for (size_t i = 0; i < chain.size(); ++i) {
+    auto& [lod, lmesh] = chain[i];
+    if (write_files) {
+      lod.file = lod_path(output, i, chain.size());
+      export_gltf(lmesh, lod.file);
+    }
+    json l = {{"ratio", lod.ratio},
+              {"faces", lod.faces},
+              {"vertices", lod.vertices},
+              {"seconds", lod.seconds},
+              {"max_influences", lod.max_influences},
+              {"heldout_rms", lod.rms},
+              {"heldout_hausdorff", lod.hausdorff},
+              {"example_pose_times", times_json(clips, sched.examples)},
+              {"heldout_times", times_json(clips, sched.held_out)}};
+    if (write_files) l["file"] = lod.file;
+    lods.push_back(l);
+  }
+  if (write_files)
+    for (const auto& [lod, m] : chain) std::cout << "  wrote " << lod.file << "\n";
+  return {{"input", name}, {"method", method}, {"triangles_in", mesh.n_faces()}, {"units", "percent of the rest-pose bounding-box diagonal"}, {"lods", lods}};
+}
+
+int run(const Options& opt) {
+  if (opt.ratio_given && !(opt.ratio > 0.0 && opt.ratio <= 1.0)) throw UsageError("--ratio must be in (0, 1]");
+  for (double r : opt.lods)
+    if (!(r > 0.0 && r <= 1.0)) throw UsageError("--lods: every ratio must be in (0, 1], got " + fmt(r, 4));
+  if (opt.max_influences < 1 || opt.max_influences > OpenMeshSkinned::Influences::kCapacity)
+    throw UsageError("--max-influences must be 1 to " + std::to_string(OpenMeshSkinned::Influences::kCapacity));
+  if (opt.poses < 1) throw UsageError("--poses must be at least 1");
+  if (opt.method != "skinned" && opt.method != "static") throw UsageError("--method must be skinned or static");
+
+  json report;
+  if (opt.input.empty()) {
+    // Built-in default: the papers' own characters, skinned next to static, files in one folder.
+    const std::string dir = opt.output.empty() ? "skinned-decimate-demo" : opt.output;
+    fs::create_directories(dir);
+    check_writable((fs::path(dir) / "x.glb").string());
+    std::cout << "No INPUT: running the papers' test characters; output in " << dir << "/\n\n";
+    Options o = opt;
+    if (o.lods.empty()) o.lods = {0.5, 0.1, 0.02};
+    json runs = json::array();
+    const std::pair<std::string, Mesh> characters[] = {
+        {"leg", OpenMeshSkinned::make_bending_cylinder(32, 64)},
+        {"column", OpenMeshSkinned::make_square_column()}};
+    for (const auto& [name, mesh] : characters) {
+      o.poses = name == "leg" ? 2 : 4;  // the papers' example poses: knee at 0 and 90; the column's four bends
+      o.pose_clip = "";
+      Mesh m = mesh;
+      runs.push_back(run_character(m, name, o, "skinned", (fs::path(dir) / (name + ".glb")).string(), true));
+      runs.push_back(run_character(m, name, o, "static", "", false));
+      std::cout << "\n";
+    }
+    report = {{"input", "built-in"}, {"runs", runs}};
+    std::cout << "Static = OpenMesh's rest-pose quadric with endpoint weights; skinned = this library. The error\n"
+                 "columns are measured in frames the decimater never saw.\n";
+  } else {
+    if (opt.output.empty()) throw UsageError("-o OUTPUT.glb is required with an INPUT");
+    const std::string ext = fs::path(opt.output).extension().string();
+    if (ext != ".glb" && ext != ".gltf") throw UsageError(opt.output + ": output must end in .glb or .gltf");
+    check_writable(opt.output);
+    if (!opt.report.empty()) check_writable(opt.report);
+    Mesh mesh;
+    const auto rep = OpenMeshSkinned::import_skinned(opt.input, mesh);
+    if (opt.faces > mesh.n_faces())
+      throw UsageError("--faces " + std::to_string(opt.faces) + " is more than the input's " +
+                       std::to_string(mesh.n_faces()) + " triangles");
+    if (!OpenMeshSkinned::clips(mesh).empty()) resolve_clip(OpenMeshSkinned::clips(mesh), opt.pose_clip, opt.input);
+    if (!opt.quiet)  // after the checks, so that a bad argument is one line
+      for (const auto& w : rep.warnings) std::cerr << "skinned-decimate: warning: " << opt.input << ": " << w << "\n";
+    Options o = opt;
+    if (o.lods.empty() && o.faces == 0 && !o.ratio_given) o.ratio = 0.5;
+    report = run_character(mesh, opt.input, o, opt.method, opt.output, true);
+  }
+  if (!opt.report.empty()) write_atomically(opt.report, report.dump(2) + "\n");
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"skinned-decimate: LODs of a skinned character that stay right in poses never seen.\n"
+               "With no INPUT, runs the papers' test characters (DeCoro's leg, Landreneau-Schaefer's column)."};
+  Options opt;
+  app.add_option("input", opt.input, "Skinned asset (glTF/GLB, FBX, Collada, X, MD5, ...)")->check(CLI::ExistingFile);
+  app.add_option("-o,--output", opt.output,
+                 "Output .glb/.gltf; with --lods, NAME_lod1.glb, NAME_lod2.glb ... in the order of decreasing ratio "
+                 "(with no INPUT: the output folder)");
+  auto* r = app.add_option("--ratio", opt.ratio, "Keep this fraction of the triangles, in (0,1] (default 0.5)");
+  auto* f = app.add_option("--faces", opt.faces, "Keep this many triangles");
+  auto* l = app.add_option("--lods", opt.lods, "A chain of ratios, built in one pass, e.g. 0.5,0.25,0.1")->delimiter(',');
+  r->excludes(f)->excludes(l);
+  f->excludes(l);
+  app.add_option("--max-influences", opt.max_influences, "Bone influences per vertex at most (1-8, default 4)");
+  app.add_option("--poses", opt.poses, "Example poses: K evenly spaced times over the clip, both ends included (default 8)");
+  app.add_option("--pose-clip", opt.pose_clip, "Clip (name or index) for the example poses; default: all clips end to end");
+  app.add_option("--method", opt.method, "Priority module: skinned (default) or static (OpenMesh's quadric, rest pose)");
+  app.add_option("--report", opt.report, "Write the summary as JSON");
+  app.add_flag("--quiet", opt.quiet, "No progress and no pose list");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "skinned-decimate: " << e.what() << "\n";
+    return 2;
+  }
+  opt.poses_given = app.count("--poses") > 0;
+  opt.ratio_given = app.count("--ratio") > 0;
+  std::vector<double> lods = opt.lods;
+  std::sort(lods.rbegin(), lods.rend());
+  opt.lods = lods;
+  try {
+    return run(opt);
+  } catch (const UsageError& e) {
+    std::cerr << "skinned-decimate: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "skinned-decimate: " << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,119 @@
+// Drives skinned-decimate as a technical artist would.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+struct CliRun {
+  int code;
+  std::string out;
+};
+CliRun cli(const std::string& args, const fs::path& cwd) {
+  const std::string cmd = "cd '" + cwd.string() + "' && '" + OMSK_CLI_EXE + "' " + args + " 2>&1";
+  CliRun r{0, ""};
+  FILE* p = popen(cmd.c_str(), "r");
+  char buf[512];
+  while (fgets(buf, sizeof buf, p)) r.out += buf;
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+fs::path scratch(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("omsk_cli_" + std::to_string(::getpid())) / name;
+  fs::create_directories(d);
+  return d;
+}
+const std::string wuson = std::string("'") + OMSK_TEST_MODELS + "/X/Testwuson.X'";
+}  // namespace
+
+TEST(Cli, LodChainWithReportOnARealCharacter) {
+  const auto d = scratch("chain");
+  const auto r = cli(wuson + " -o w.glb --lods 0.5,0.25,0.1 --max-influences 4 --poses 8 --report w.json --quiet", d);
+  ASSERT_EQ(r.code, 0) << r.out;
+  nlohmann::json rep;
+  std::ifstream(d / "w.json") >> rep;
+  ASSERT_EQ(rep["lods"].size(), 3u);
+  size_t prev_faces = SIZE_MAX;
+  double prev_rms = -1.0;
+  for (int i = 0; i < 3; ++i) {
+    const auto& l = rep["lods"][i];
+    const fs::path file = d / ("w_lod" + std::to_string(i + 1) + ".glb");
+    ASSERT_TRUE(fs::exists(file)) << file;
+    EXPECT_LT(l["faces"].get<size_t>(), prev_faces);
+    EXPECT_LE(l["max_influences"].get<int>(), 4);
+    EXPECT_GT(l["heldout_rms"].get<double>(), prev_rms);
+    EXPECT_EQ(l["example_pose_times"].size(), 8u);
+    EXPECT_GT(l["heldout_times"].size(), 0u);
+    prev_faces = l["faces"];
+    prev_rms = l["heldout_rms"];
+    // The LOD is a valid glTF with the skeleton, the skin and every clip.
+    tinygltf::Model m;
+    tinygltf::TinyGLTF loader;
+    std::string err, warn;
+    ASSERT_TRUE(loader.LoadBinaryFromFile(&m, &err, &warn, file.string())) << err;
+    EXPECT_EQ(m.skins.size(), 1u);
+    EXPECT_EQ(m.animations.size(), 3u);
+    EXPECT_GT(m.skins[0].joints.size(), 10u);
+  }
+  EXPECT_NE(r.out.find("heldout RMS%"), std::string::npos) << r.out;
+}
+
+TEST(Cli, FacesTargetAndStaticMethod) {
+  const auto d = scratch("faces");
+  const auto r = cli(wuson + " -o s.gltf --faces 1000 --method static --quiet --report s.json", d);
+  ASSERT_EQ(r.code, 0) << r.out;
+  nlohmann::json rep;
+  std::ifstream(d / "s.json") >> rep;
+  EXPECT_NEAR(rep["lods"][0]["faces"].get<double>(), 1000.0, 2.0);
+  EXPECT_TRUE(fs::exists(d / "s.gltf"));
+}
+
+TEST(Cli, BadInputGivesOneLineErrorNonZeroExitAndNoFiles) {
+  const auto d = scratch("bad");
+  fs::create_directories(d / "ro");
+  std::ofstream(d / "plainfile") << "x";
+  const std::vector<std::string> cases = {
+      wuson + " -o a.glb --bogus",
+      wuson + " -o a.glb --ratio 0",
+      wuson + " -o a.glb --ratio 1.5",
+      wuson + " -o a.glb --faces 999999",
+      wuson + " -o a.glb --max-influences 0",
+      wuson + " -o a.glb --poses 0",
+      wuson + " -o a.glb --pose-clip NoSuchClip",
+      wuson + " -o a.glb --lods 0.5,2",
+      wuson + " -o a.obj",
+      wuson + " -o plainfile/a.glb",
+      wuson + " -o no/such/dir/a.glb",
+      wuson,
+      "no-such-file.fbx -o a.glb",
+      wuson + " -o a.glb --ratio 0.5 --faces 100",
+  };
+  for (const auto& args : cases) {
+    SCOPED_TRACE(args);
+    const auto r = cli(args, d);
+    EXPECT_NE(r.code, 0) << r.out;
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+  }
+  for (const auto& e : fs::recursive_directory_iterator(d))
+    EXPECT_TRUE(e.path().filename() == "plainfile" || e.path().filename() == "ro") << e.path();
+}
+
+TEST(Cli, NoAnimationWithPosesExplainsAndRunsInRestPose) {
+  const auto d = scratch("static");
+  std::ofstream(d / "tet.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 1 1 1\n"
+                                  "f 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 5\nf 3 4 5\nf 4 2 5\n";
+  const auto r = cli("tet.obj -o t.glb --ratio 1 --poses 4", d);
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NE(r.out.find("no animation"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("rest pose only"), std::string::npos) << r.out;
+  EXPECT_TRUE(fs::exists(d / "t.glb"));
+}
