@@ -101,6 +101,8 @@ public:
     quadric_.assign(nv * P_, PoseQuadric{});
     stamp_.assign(nv, 0);
     cache_.assign(mesh_.n_edges(), CacheEntry{});
+    if (!mesh_.get_property_handle(deferred_, kDeferredProperty)) mesh_.add_property(deferred_, kDeferredProperty);
+    for (auto vh : mesh_.all_vertices()) mesh_.property(deferred_, vh) = false;
     for (auto vh : mesh_.vertices()) update_posed(vh);
     for (auto fh : mesh_.faces()) {
       auto fv = mesh_.cfv_iter(fh);
@@ -177,12 +179,57 @@ public:
   /** Whether collapsing \p ci, with the merged vertex at \p rest with skin \p w, turns any remaining face
    *  around it by more than the allowed angle, or makes it degenerate, in any pose. */
   bool flips(const CollapseInfo& ci, const Eigen::Vector3d& rest, const Influences& w, double min_cos) const {
+    // The surviving faces around the collapse, as (center, a, b): the center becomes the merged vertex.
+    // Gathered once, then checked pose by pose (circulating per pose costs more than the check).
+    ring_faces_.clear();
+    for (const VertexHandle center : {ci.v0, ci.v1}) {
+      const VertexHandle other = center == ci.v0 ? ci.v1 : ci.v0;
+      for (auto heh : mesh_.voh_range(center)) {
+        if (mesh_.is_boundary(heh)) continue;
+        const VertexHandle a = mesh_.to_vertex_handle(heh);
+        const VertexHandle b = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(heh));
+        if (a != other && b != other) ring_faces_.push_back({center.idx(), a.idx(), b.idx()});
+      }
+    }
     for (int j = 0; j < P_; ++j) {
       const Eigen::Vector3d p = posed_point(rest, w, j);
-      if (flips_in_pose(ci.v0, ci.v1, ci.v0, p, j, min_cos) || flips_in_pose(ci.v1, ci.v0, ci.v0, p, j, min_cos))
-        return true;
+      for (const auto& f : ring_faces_) {
+        const Eigen::Vector3d &pc = posed_[f[0] * P_ + j], &pa = posed_[f[1] * P_ + j], &pb = posed_[f[2] * P_ + j];
+        const Eigen::Vector3d n_old = (pa - pc).cross(pb - pc);
+        const Eigen::Vector3d n_new = (pa - p).cross(pb - p);
+        const double l2_new = n_new.squaredNorm(), l2_old = n_old.squaredNorm();
+        const double scale = std::max({(pa - p).squaredNorm(), (pb - p).squaredNorm(), (pa - pb).squaredNorm()});
+        if (l2_new <= 1e-20 * scale * scale) return true;  // degenerate
+        if (l2_old <= 0.0) continue;
+        const double d = n_new.dot(n_old);
+        // d < min_cos |n_new||n_old|, without square roots.
+        if (min_cos >= 0.0 ? (d < 0.0 || d * d < min_cos * min_cos * l2_new * l2_old)
+                           : (d < 0.0 && d * d > min_cos * min_cos * l2_new * l2_old))
+          return true;
+      }
     }
     return false;
+  }
+
+  // ---- pruning the binary checks ---------------------------------------------------------------------
+  // A decimater keeps, for each vertex, only its cheapest legal collapse. Once the priority module has
+  // priced a legal collapse from v0 at e, any other collapse from v0 costing at least e cannot be chosen,
+  // so its expensive binary checks (fold-over in every pose) can be skipped. The record is per v0 and is
+  // forgotten at every collapse.
+
+  /// Called by the priority module for a collapse that every binary module accepted.
+  void note_legal_priority(VertexHandle v0, double error) {
+    if (best_v0_ != v0.idx()) {
+      best_v0_ = v0.idx();
+      best_error_ = error;
+    } else {
+      best_error_ = std::min(best_error_, error);
+    }
+  }
+  /// Whether \p ci cannot win over a legal collapse already priced for the same v0.
+  bool cannot_win(const CollapseInfo& ci) {
+    if (!placement_ || best_v0_ != ci.v0.idx()) return false;
+    return solve(ci).error >= best_error_;
   }
 
   /// Where and with which skin the merged vertex will be if \p ci is collapsed now.
@@ -204,6 +251,7 @@ public:
   void begin_collapse(const CollapseInfo& ci) {
     if (pending_) return;
     pending_ = true;
+    best_v0_ = -1;
     pending_result_.valid = false;
     ring_.clear();
     for (auto vh : mesh_.vv_range(ci.v0)) ring_.push_back(vh);  // what DecimaterT re-asks afterwards
@@ -301,37 +349,41 @@ private:
   // stale. Lock them (DecimaterT skips a locked v0) until DecimaterT re-asks them as someone's support;
   // never touch a vertex the user locked.
   void defer_stale_neighbours(VertexHandle v1) {
-    if (!mesh_.get_property_handle(deferred_, kDeferredProperty)) {
-      mesh_.add_property(deferred_, kDeferredProperty);
-      for (auto vh : mesh_.all_vertices()) mesh_.property(deferred_, vh) = false;
-    }
     for (VertexHandle s : ring_)
       if (mesh_.property(deferred_, s)) {
         mesh_.status(s).set_locked(false);
         mesh_.property(deferred_, s) = false;
       }
     // A collapse z -> w is judged on the faces around z and around w, so z's verdict may be stale when
-    // v1 is within two rings of z. Only a verdict that would now be wrong matters: lock z when one of its
-    // collapses flips a face now (its stored one might be that one).
-    auto defer = [&](VertexHandle z) {
-      if (z == v1 || mesh_.status(z).locked() || std::find(ring_.begin(), ring_.end(), z) != ring_.end()) return;
-      Eigen::Vector3d rest;
-      Influences w;
-      for (auto h : mesh_.voh_range(z)) {
-        if (!mesh_.is_collapse_ok(h)) continue;
-        const CollapseInfo zc(mesh_, h);
-        placement_of(zc, rest, w);
-        if (flips(zc, rest, w, fold_cos_)) {
-          mesh_.status(z).set_locked(true);
-          mesh_.property(deferred_, z) = true;
-          ++stats_.deferred;
-          return;
-        }
-      }
+    // v1 is a neighbour of z, or of w. Only a verdict that would now be wrong matters: lock z when such a
+    // collapse flips a face now (its stored one might be that one).
+    Eigen::Vector3d rest;
+    Influences w;
+    auto now_flips = [&](typename Mesh::HalfedgeHandle h) {
+      const CollapseInfo zc(mesh_, h);
+      placement_of(zc, rest, w);
+      return flips(zc, rest, w, fold_cos_) && mesh_.is_collapse_ok(h);
+    };
+    auto candidate = [&](VertexHandle z) {
+      return z != v1 && !mesh_.status(z).locked() && std::find(ring_.begin(), ring_.end(), z) == ring_.end();
+    };
+    auto lock = [&](VertexHandle z) {
+      mesh_.status(z).set_locked(true);
+      mesh_.property(deferred_, z) = true;
+      ++stats_.deferred;
     };
     for (auto z : mesh_.vv_range(v1)) {
-      defer(z);
-      for (auto y : mesh_.vv_range(z)) defer(y);
+      if (candidate(z))
+        for (auto h : mesh_.voh_range(z))
+          if (now_flips(h)) {
+            lock(z);
+            break;
+          }
+      // Second ring: only the collapses that end on a neighbour of v1.
+      for (auto h : mesh_.vih_range(z)) {
+        const VertexHandle y = mesh_.from_vertex_handle(h);
+        if (candidate(y) && !mesh_.status(y).locked() && now_flips(h)) lock(y);
+      }
     }
   }
 
@@ -339,28 +391,6 @@ private:
     const Eigen::Vector3d rest = to_eigen(mesh_.point(v));
     const Influences& w = mesh_.property(h_inf_, v);
     for (int j = 0; j < P_; ++j) posed_[v.idx() * P_ + j] = skin_point(rest, w, poses_[j]);
-  }
-
-  // Faces around \p center that survive the collapse (those not holding \p other), with \p moved
-  // (v0 or center itself) replaced by the merged vertex at posed position p.
-  bool flips_in_pose(VertexHandle center, VertexHandle other, VertexHandle v0, const Eigen::Vector3d& p, int j,
-                     double min_cos) const {
-    for (auto heh : mesh_.voh_range(center)) {
-      if (mesh_.is_boundary(heh)) continue;
-      const VertexHandle a = mesh_.to_vertex_handle(heh);
-      const VertexHandle b = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(heh));
-      if (a == other || b == other) continue;  // removed by the collapse
-      (void)v0;
-      const Eigen::Vector3d &pc = posed(center, j), &pa = posed(a, j), &pb = posed(b, j);
-      const Eigen::Vector3d n_old = (pa - pc).cross(pb - pc);
-      const Eigen::Vector3d n_new = (pa - p).cross(pb - p);
-      const double l_new = n_new.norm(), l_old = n_old.norm();
-      const double scale = std::max({(pa - p).squaredNorm(), (pb - p).squaredNorm(), (pa - pb).squaredNorm()});
-      if (l_new <= 1e-10 * scale) return true;  // degenerate
-      if (l_old <= 0.0) continue;
-      if (n_new.dot(n_old) < min_cos * l_new * l_old) return true;
-    }
-    return false;
   }
 
   // E(v, a) for the summed quadrics of the current edge.
@@ -378,7 +408,8 @@ private:
   // Directions the quadrics barely constrain (along a straight crease, across a flat patch) are left at
   // the reference point \p ref (Lindstrom's truncated pseudo-inverse): solving them exactly would fling
   // the vertex far along a valley of near-zero error. Returns false when nothing is constrained.
-  bool vertex_step(const WeightSolver::Vector& a, const Eigen::Vector3d& ref, Eigen::Vector3d& v) const {
+  bool vertex_step(const WeightSolver::Vector& a, const Eigen::Vector3d& ref, Eigen::Vector3d& v,
+                   bool& full_rank) const {
     Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
     Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
     for (int j = 0; j < P_; ++j) {
@@ -390,13 +421,19 @@ private:
       A += R.transpose() * Aj * R;
       rhs -= R.transpose() * (Aj * t + Q_[j].b());
     }
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(A);
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
+    es.computeDirect(A);  // closed form for 3x3, several times faster than the iterative solver
     const Eigen::Vector3d ev = es.eigenvalues();
     if (!(ev[2] > 0.0)) return false;
     const Eigen::Vector3d r = es.eigenvectors().transpose() * (rhs - A * ref);
     Eigen::Vector3d d = Eigen::Vector3d::Zero();
-    for (int i = 0; i < 3; ++i)
-      if (ev[i] > kPseudoInverseCutoff * ev[2]) d[i] = r[i] / ev[i];
+    full_rank = true;
+    for (int i = 0; i < 3; ++i) {
+      if (ev[i] > kPseudoInverseCutoff * ev[2])
+        d[i] = r[i] / ev[i];
+      else
+        full_rank = false;
+    }
     v = ref + es.eigenvectors() * d;
     return v.allFinite();
   }
@@ -460,7 +497,13 @@ private:
   Eigen::Vector3d place(const Eigen::Vector3d& pa, const Eigen::Vector3d& pb, const WeightSolver::Vector& a) const {
     const Eigen::Vector3d mid = 0.5 * (pa + pb);
     Eigen::Vector3d cand[4] = {mid, pa, pb, mid};
-    const int n = vertex_step(a, mid, cand[3]) ? 4 : 3;
+    bool full_rank = false;
+    int n = vertex_step(a, mid, cand[3], full_rank) ? 4 : 3;
+    // A thin part (a tail, a finger) has quadrics whose minimum lies far along its axis: the error keeps
+    // falling a little as the vertex slides out of the mesh. Optima more than an edge length beyond the
+    // edge's midpoint are such valleys, not features: keep to the endpoints and the midpoint there.
+    if (n == 4 && (cand[3] - mid).squaredNorm() > kMaxReach * kMaxReach * (pa - pb).squaredNorm()) n = 3;
+    if (n == 4 && full_rank) return cand[3];  // the exact minimiser: nothing can beat it
     int best = 0;
     double be = energy(cand[0], a);
     for (int i = 1; i < n; ++i) {
@@ -536,6 +579,8 @@ private:
   static constexpr int kMaxSupport = 2 * Influences::kCapacity;
   // Eigenvalues below this fraction of the largest count as unconstrained directions.
   static constexpr double kPseudoInverseCutoff = 1e-3;
+  // How far (in edge lengths) from the edge's midpoint a solved position may lie.
+  static constexpr double kMaxReach = 1.0;
 
   Mesh& mesh_;
   OpenMesh::VPropHandleT<Influences> h_inf_;
@@ -548,14 +593,18 @@ private:
   bool prepared_ = false;
 
   int max_influences_ = Influences::kCapacity;
-  CapStrategy strategy_ = CapStrategy::Greedy;
+  // TopN measured better on real characters (bench/README.md, cap-strategy workload).
+  CapStrategy strategy_ = CapStrategy::TopN;
   bool placement_ = false;
   bool fold_check_ = false;
   double fold_cos_ = 0.0;
   int max_iterations_ = 8;
 
   bool pending_ = false;
+  int best_v0_ = -1;
+  double best_error_ = 0.0;
   std::vector<VertexHandle> ring_;
+  mutable std::vector<std::array<int, 3>> ring_faces_;
   OpenMesh::VPropHandleT<bool> deferred_;
   CollapseResult pending_result_;
 
