@@ -1,4 +1,6 @@
 // skinned-decimate: LOD chains from skinned characters, judged in poses the decimater never saw.
+#include <OpenMeshSkinned/Decimater/ModDeformationSensitiveT.hh>
+#include <OpenMeshSkinned/Decimater/ModRestPoseQuadricT.hh>
 #include <OpenMeshSkinned/Decimater/ModSkinnedFoldOverT.hh>
 #include <OpenMeshSkinned/Decimater/ModSkinnedQuadricT.hh>
 #include <OpenMeshSkinned/Decimater/ModWeightCapT.hh>
@@ -44,6 +46,7 @@ struct Options {
   bool quiet = false;
   bool poses_given = false;
   bool ratio_given = false;
+  bool compare = false;
 };
 
 struct UsageError : std::runtime_error {
@@ -101,12 +104,16 @@ std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vect
   OpenMeshSkinned::ModWeightCapT<Mesh>::Handle hc;
   OpenMesh::Decimater::ModQuadricT<Mesh>::Handle hs;
   OpenMesh::Decimater::ModNormalFlippingT<Mesh>::Handle hn;
-  if (method == "skinned") {
-    dec.add(hq);
-    dec.add(hf);
-  } else {  // "static": OpenMesh's rest-pose quadric, endpoint placement and weights
+  OpenMeshSkinned::ModRestPoseQuadricT<Mesh>::Handle hr;
+  OpenMeshSkinned::ModDeformationSensitiveT<Mesh>::Handle hd;
+  if (method == "static") {  // OpenMesh's own: rest-pose quadric, endpoint placement and weights
     dec.add(hs);
     dec.add(hn);
+  } else {
+    if (method == "skinned") dec.add(hq);
+    if (method == "rest") dec.add(hr);
+    if (method == "dsd") dec.add(hd);
+    dec.add(hf);  // every method but OpenMesh's own gets the same fold-over check in every example pose
   }
   dec.add(hc);
   dec.module(hc).set_max_influences(opt.max_influences);
@@ -124,7 +131,7 @@ std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vect
     size_t live = 0;
     for (auto fh : mesh.faces()) (void)fh, ++live;
     collapses += dec.decimate_to_faces(0, targets[i] + (mesh.n_faces() - live));
-    if (method == "skinned") dec.module(hq).solver().release_deferred();  // give every vertex a chance next level
+    if (method != "static") dec.module(hf).release_deferred();  // give every vertex a chance next level
     Lod lod;
     lod.ratio = ratios[i];
     lod.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
@@ -282,6 +289,20 @@ json run_character(const Mesh& mesh, const std::string& name, const Options& opt
   return {{"input", name}, {"method", method}, {"triangles_in", mesh.n_faces()}, {"units", "percent of the rest-pose bounding-box diagonal"}, {"lods", lods}};
 }
 
+// One table: method x LOD.
+void print_comparison(const json& runs) {
+  std::cout << "comparison (held-out error, % of the rest-pose bounding-box diagonal)\n  " << std::left << std::setw(9)
+            << "method" << std::setw(8) << "ratio" << std::right << std::setw(10) << "triangles" << std::setw(10)
+            << "seconds" << std::setw(14) << "mean RMS%" << std::setw(15) << "max Haus%" << "\n";
+  for (const auto& r : runs)
+    for (const auto& l : r["lods"])
+      std::cout << "  " << std::left << std::setw(9) << r["method"].get<std::string>() << std::setw(8)
+                << fmt(l["ratio"].get<double>(), 4) << std::right << std::setw(10) << l["faces"].get<size_t>()
+                << std::setw(10) << fmt(l["seconds"].get<double>(), 2) << std::setw(14)
+                << fmt(l["heldout_rms"].get<double>(), 4) << std::setw(15) << fmt(l["heldout_hausdorff"].get<double>(), 4)
+                << "\n";
+}
+
 int run(const Options& opt) {
   if (opt.ratio_given && !(opt.ratio > 0.0 && opt.ratio <= 1.0)) throw UsageError("--ratio must be in (0, 1]");
   for (double r : opt.lods)
@@ -289,7 +310,8 @@ int run(const Options& opt) {
   if (opt.max_influences < 1 || opt.max_influences > OpenMeshSkinned::Influences::kCapacity)
     throw UsageError("--max-influences must be 1 to " + std::to_string(OpenMeshSkinned::Influences::kCapacity));
   if (opt.poses < 1) throw UsageError("--poses must be at least 1");
-  if (opt.method != "skinned" && opt.method != "static") throw UsageError("--method must be skinned or static");
+  if (opt.method != "skinned" && opt.method != "static" && opt.method != "rest" && opt.method != "dsd")
+    throw UsageError("--method must be skinned, rest, dsd or static");
 
   json report;
   if (opt.input.empty()) {
@@ -331,7 +353,17 @@ int run(const Options& opt) {
       for (const auto& w : rep.warnings) std::cerr << "skinned-decimate: warning: " << opt.input << ": " << w << "\n";
     Options o = opt;
     if (o.lods.empty() && o.faces == 0 && !o.ratio_given) o.ratio = 0.5;
-    report = run_character(mesh, opt.input, o, opt.method, opt.output, true);
+    if (o.compare) {
+      json runs = json::array();
+      for (const char* m : {"skinned", "dsd", "rest", "static"}) {
+        runs.push_back(run_character(mesh, opt.input, o, m, opt.output, std::string(m) == opt.method));
+        std::cout << "\n";
+      }
+      print_comparison(runs);
+      report = {{"input", opt.input}, {"runs", runs}};
+    } else {
+      report = run_character(mesh, opt.input, o, opt.method, opt.output, true);
+    }
   }
   if (!opt.report.empty()) write_atomically(opt.report, report.dump(2) + "\n");
   return 0;
@@ -355,7 +387,10 @@ int main(int argc, char** argv) {
   app.add_option("--max-influences", opt.max_influences, "Bone influences per vertex at most (1-8, default 4)");
   app.add_option("--poses", opt.poses, "Example poses: K evenly spaced times over the clip, both ends included (default 8)");
   app.add_option("--pose-clip", opt.pose_clip, "Clip (name or index) for the example poses; default: all clips end to end");
-  app.add_option("--method", opt.method, "Priority module: skinned (default) or static (OpenMesh's quadric, rest pose)");
+  app.add_option("--method", opt.method,
+                 "Priority module: skinned (default, Landreneau-Schaefer), rest (rest-pose quadric, distance-"
+                 "interpolated weights), dsd (Mohr-Gleicher), static (OpenMesh's ModQuadricT as it is)");
+  app.add_flag("--compare", opt.compare, "Run every method on the same input and print one table");
   app.add_option("--report", opt.report, "Write the summary as JSON");
   app.add_flag("--quiet", opt.quiet, "No progress and no pose list");
   try {

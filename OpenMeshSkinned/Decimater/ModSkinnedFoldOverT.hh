@@ -48,6 +48,10 @@ public:
   void preprocess_collapse(const CollapseInfo& ci) override { solver_->begin_collapse(ci); }
   void postprocess_collapse(const CollapseInfo& ci) override { solver_->end_collapse(ci); }
 
+  /// Unlocks the vertices held back from the last decimate call (see CollapseSolverT); call between
+  /// successive decimate calls on the same decimater, e.g. when building a LOD chain.
+  void release_deferred() { solver_->release_deferred(); }
+
   /// Largest allowed rotation of a face normal by one collapse, in degrees, in any pose (0..180].
   void set_max_angle(double deg) {
     max_angle_deg_ = deg;

@@ -19,6 +19,7 @@
 #include "OpenMeshSkinned/Skin/LinearBlendSkinning.hh"
 #include "OpenMeshSkinned/Skin/SkinProperties.hh"
 #include "OpenMeshSkinned/Solver/PoseQuadric.hh"
+#include "OpenMeshSkinned/Solver/VertexQuadrics.hh"
 #include "OpenMeshSkinned/Solver/WeightSolver.hh"
 
 #include <Eigen/Eigenvalues>
@@ -53,6 +54,15 @@ struct CollapseSolverStats {
   WeightSolverStats weights;
 };
 
+/** A cost model other than the skinned quadric that places the merged vertex (e.g. the rest-pose
+ *  quadric): set with CollapseSolverT::set_edge_model(); the solver then caches and applies its answers. */
+template <typename Mesh>
+class EdgeModelT {
+public:
+  virtual ~EdgeModelT() = default;
+  virtual void solve_edge(typename Mesh::VertexHandle a, typename Mesh::VertexHandle b, CollapseResult& out) = 0;
+};
+
 template <typename Mesh>
 class CollapseSolverT {
 public:
@@ -67,23 +77,35 @@ public:
   /// Most influences a vertex may have (ModWeightCapT sets it; otherwise the storage capacity).
   void set_max_influences(int n) {
     max_influences_ = std::clamp(n, 1, Influences::kCapacity);
-    cache_.clear();
+    invalidate_cache();
   }
   int max_influences() const { return max_influences_; }
   void set_cap_strategy(CapStrategy s) {
     strategy_ = s;
-    cache_.clear();
+    invalidate_cache();
   }
   CapStrategy cap_strategy() const { return strategy_; }
   /// Whether the merged vertex takes the solved position and weights (ModSkinnedQuadricT turns it on).
   /// Off, a collapse is OpenMesh's plain halfedge collapse: v1 keeps its position and skin.
   void set_placement(bool on) { placement_ = on; }
+  /// Replaces the skinned quadric as the source of placements and errors (nullptr restores it).
+  void set_edge_model(EdgeModelT<Mesh>* model) {
+    model_ = model;
+    invalidate_cache();
+  }
   bool placement() const { return placement_; }
   /// Largest normal rotation (radians) a collapse may cause in any pose; set by ModSkinnedFoldOverT.
   /// The placement is checked against it again at collapse time (see end_collapse()).
   void set_fold_over_angle(double rad) { fold_cos_ = std::cos(rad); fold_check_ = true; }
   bool fold_over_check() const { return fold_check_; }
-  void set_max_iterations(int n) { max_iterations_ = std::max(1, n); }
+  void set_max_iterations(int n) {
+    max_iterations_ = std::max(1, n);
+    invalidate_cache();
+  }
+  /// Forgets every cached edge answer (settings changed).
+  void invalidate_cache() {
+    for (auto& c : cache_) c.filled = false;
+  }
   int max_iterations() const { return max_iterations_; }
 
   // ---- lifetime --------------------------------------------------------------------------------------
@@ -104,41 +126,9 @@ public:
     if (!mesh_.get_property_handle(deferred_, kDeferredProperty)) mesh_.add_property(deferred_, kDeferredProperty);
     for (auto vh : mesh_.all_vertices()) mesh_.property(deferred_, vh) = false;
     for (auto vh : mesh_.vertices()) update_posed(vh);
-    for (auto fh : mesh_.faces()) {
-      auto fv = mesh_.cfv_iter(fh);
-      const VertexHandle a = *fv++, b = *fv++, c = *fv;
-      for (int j = 0; j < P_; ++j) {
-        const Eigen::Vector3d &pa = posed(a, j), &pb = posed(b, j), &pc = posed(c, j);
-        Eigen::Vector3d n = (pb - pa).cross(pc - pa);
-        const double len = n.norm();
-        if (len <= 0.0) continue;
-        n /= len;
-        const PoseQuadric q = PoseQuadric::plane(n, -n.dot(pa), 0.5 * len);
-        quadric(a, j) += q;
-        quadric(b, j) += q;
-        quadric(c, j) += q;
-      }
-    }
-    // Boundary edges get a perpendicular constraint plane so that open borders do not shrink away.
-    for (auto heh : mesh_.halfedges()) {
-      if (!mesh_.is_boundary(heh)) continue;
-      const auto opp = mesh_.opposite_halfedge_handle(heh);
-      const auto fh = mesh_.face_handle(opp);
-      const VertexHandle a = mesh_.from_vertex_handle(heh), b = mesh_.to_vertex_handle(heh);
-      for (int j = 0; j < P_; ++j) {
-        auto fv = mesh_.cfv_iter(fh);
-        const Eigen::Vector3d &f0 = posed(*fv++, j), &f1 = posed(*fv++, j), &f2 = posed(*fv, j);
-        const Eigen::Vector3d fn = (f1 - f0).cross(f2 - f0);
-        const Eigen::Vector3d e = posed(b, j) - posed(a, j);
-        Eigen::Vector3d n = e.cross(fn);
-        const double len = n.norm();
-        if (len <= 0.0) continue;
-        n /= len;
-        const PoseQuadric q = PoseQuadric::plane(n, -n.dot(posed(a, j)), e.squaredNorm());
-        quadric(a, j) += q;
-        quadric(b, j) += q;
-      }
-    }
+    accumulate_quadrics(
+        mesh_, P_, [this](VertexHandle v, int j) { return posed(v, j); },
+        [this](VertexHandle v, int j) -> PoseQuadric& { return quadric(v, j); });
     prepared_ = true;
   }
 
@@ -162,7 +152,10 @@ public:
       return ce.result;
     }
     ++stats_.solves;
-    solve_edge(VertexHandle(a), VertexHandle(b), ce.result);
+    if (model_)
+      model_->solve_edge(VertexHandle(a), VertexHandle(b), ce.result);
+    else
+      solve_edge(VertexHandle(a), VertexHandle(b), ce.result);
     ce.filled = true;
     ce.va = a;
     ce.vb = b;
@@ -596,6 +589,7 @@ private:
   // TopN measured better on real characters (bench/README.md, cap-strategy workload).
   CapStrategy strategy_ = CapStrategy::TopN;
   bool placement_ = false;
+  EdgeModelT<Mesh>* model_ = nullptr;
   bool fold_check_ = false;
   double fold_cos_ = 0.0;
   int max_iterations_ = 8;

@@ -1,0 +1,79 @@
+#pragma once
+/** \file VertexQuadrics.hh
+ *  Per-vertex Garland-Heckbert quadrics of a mesh in one or more configurations (poses), and the optimal
+ *  point of a summed quadric near an edge.
+ */
+
+#include "OpenMeshSkinned/Solver/PoseQuadric.hh"
+
+#include <Eigen/Eigenvalues>
+
+namespace OpenMeshSkinned {
+
+/** Adds to \p quadric(v, j) the area-weighted planes of v's faces in configuration j (positions
+ *  \p pos(v, j)), for j in [0, n_poses), plus, at open borders, a plane through the border edge
+ *  perpendicular to its face, weighted by the squared edge length, so that borders do not shrink away. */
+template <typename Mesh, typename Pos, typename Quadric>
+void accumulate_quadrics(const Mesh& mesh, int n_poses, Pos pos, Quadric quadric) {
+  using VH = typename Mesh::VertexHandle;
+  for (auto fh : mesh.faces()) {
+    auto fv = mesh.cfv_iter(fh);
+    const VH a = *fv++, b = *fv++, c = *fv;
+    for (int j = 0; j < n_poses; ++j) {
+      const Eigen::Vector3d pa = pos(a, j), pb = pos(b, j), pc = pos(c, j);
+      Eigen::Vector3d n = (pb - pa).cross(pc - pa);
+      const double len = n.norm();
+      if (len <= 0.0) continue;
+      n /= len;
+      const PoseQuadric q = PoseQuadric::plane(n, -n.dot(pa), 0.5 * len);
+      quadric(a, j) += q;
+      quadric(b, j) += q;
+      quadric(c, j) += q;
+    }
+  }
+  for (auto heh : mesh.halfedges()) {
+    if (!mesh.is_boundary(heh)) continue;
+    const auto fh = mesh.face_handle(mesh.opposite_halfedge_handle(heh));
+    const VH a = mesh.from_vertex_handle(heh), b = mesh.to_vertex_handle(heh);
+    for (int j = 0; j < n_poses; ++j) {
+      auto fv = mesh.cfv_iter(fh);
+      const Eigen::Vector3d f0 = pos(*fv++, j), f1 = pos(*fv++, j), f2 = pos(*fv, j);
+      const Eigen::Vector3d e = pos(b, j) - pos(a, j);
+      Eigen::Vector3d n = e.cross((f1 - f0).cross(f2 - f0));
+      const double len = n.norm();
+      if (len <= 0.0) continue;
+      n /= len;
+      const PoseQuadric q = PoseQuadric::plane(n, -n.dot(pos(a, j)), e.squaredNorm());
+      quadric(a, j) += q;
+      quadric(b, j) += q;
+    }
+  }
+}
+
+/** The point minimising the static quadric \p q for the edge (pa, pb): directions the quadric barely
+ *  constrains (eigenvalues below 1e-3 of the largest) stay at the midpoint, a minimiser further than one
+ *  edge length from the midpoint is refused, and the endpoints and midpoint compete with it. */
+inline Eigen::Vector3d optimal_point(const PoseQuadric& q, const Eigen::Vector3d& pa, const Eigen::Vector3d& pb) {
+  const Eigen::Vector3d mid = 0.5 * (pa + pb);
+  Eigen::Vector3d best = mid;
+  double be = q(mid);
+  for (const Eigen::Vector3d& c : {pa, pb})
+    if (q(c) < be) {
+      be = q(c);
+      best = c;
+    }
+  const Eigen::Matrix3d A = q.A();
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
+  es.computeDirect(A);
+  const Eigen::Vector3d ev = es.eigenvalues();
+  if (!(ev[2] > 0.0)) return best;
+  const Eigen::Vector3d r = es.eigenvectors().transpose() * (-q.b() - A * mid);
+  Eigen::Vector3d d = Eigen::Vector3d::Zero();
+  for (int i = 0; i < 3; ++i)
+    if (ev[i] > 1e-3 * ev[2]) d[i] = r[i] / ev[i];
+  const Eigen::Vector3d v = mid + es.eigenvectors() * d;
+  if (v.allFinite() && (v - mid).squaredNorm() <= (pa - pb).squaredNorm() && q(v) < be) best = v;
+  return best;
+}
+
+}  // namespace OpenMeshSkinned
