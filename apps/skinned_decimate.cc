@@ -1,5 +1,6 @@
 // skinned-decimate: LOD chains from skinned characters, judged in poses the decimater never saw.
 #include <OpenMeshSkinned/Decimater/ModDeformationSensitiveT.hh>
+#include <OpenMeshSkinned/Decimater/ModPoseIndependentQuadricT.hh>
 #include <OpenMeshSkinned/Decimater/ModRestPoseQuadricT.hh>
 #include <OpenMeshSkinned/Decimater/ModSkinnedFoldOverT.hh>
 #include <OpenMeshSkinned/Decimater/ModSkinnedQuadricT.hh>
@@ -106,6 +107,7 @@ std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vect
   OpenMesh::Decimater::ModNormalFlippingT<Mesh>::Handle hn;
   OpenMeshSkinned::ModRestPoseQuadricT<Mesh>::Handle hr;
   OpenMeshSkinned::ModDeformationSensitiveT<Mesh>::Handle hd;
+  OpenMeshSkinned::ModPoseIndependentQuadricT<Mesh>::Handle hp;
   if (method == "static") {  // OpenMesh's own: rest-pose quadric, endpoint placement and weights
     dec.add(hs);
     dec.add(hn);
@@ -113,6 +115,7 @@ std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vect
     if (method == "skinned") dec.add(hq);
     if (method == "rest") dec.add(hr);
     if (method == "dsd") dec.add(hd);
+    if (method == "decoro") dec.add(hp);  // poses drawn from the clips' empirical distribution
     dec.add(hf);  // every method but OpenMesh's own gets the same fold-over check in every example pose
   }
   dec.add(hc);
@@ -310,8 +313,9 @@ int run(const Options& opt) {
   if (opt.max_influences < 1 || opt.max_influences > OpenMeshSkinned::Influences::kCapacity)
     throw UsageError("--max-influences must be 1 to " + std::to_string(OpenMeshSkinned::Influences::kCapacity));
   if (opt.poses < 1) throw UsageError("--poses must be at least 1");
-  if (opt.method != "skinned" && opt.method != "static" && opt.method != "rest" && opt.method != "dsd")
-    throw UsageError("--method must be skinned, rest, dsd or static");
+  if (opt.method != "skinned" && opt.method != "static" && opt.method != "rest" && opt.method != "dsd" &&
+      opt.method != "decoro")
+    throw UsageError("--method must be skinned, decoro, dsd, rest or static");
 
   json report;
   if (opt.input.empty()) {
@@ -355,7 +359,7 @@ int run(const Options& opt) {
     if (o.lods.empty() && o.faces == 0 && !o.ratio_given) o.ratio = 0.5;
     if (o.compare) {
       json runs = json::array();
-      for (const char* m : {"skinned", "dsd", "rest", "static"}) {
+      for (const char* m : {"skinned", "decoro", "dsd", "rest", "static"}) {
         runs.push_back(run_character(mesh, opt.input, o, m, opt.output, std::string(m) == opt.method));
         std::cout << "\n";
       }
@@ -388,8 +392,9 @@ int main(int argc, char** argv) {
   app.add_option("--poses", opt.poses, "Example poses: K evenly spaced times over the clip, both ends included (default 8)");
   app.add_option("--pose-clip", opt.pose_clip, "Clip (name or index) for the example poses; default: all clips end to end");
   app.add_option("--method", opt.method,
-                 "Priority module: skinned (default, Landreneau-Schaefer), rest (rest-pose quadric, distance-"
-                 "interpolated weights), dsd (Mohr-Gleicher), static (OpenMesh's ModQuadricT as it is)");
+                 "Priority module: skinned (default, Landreneau-Schaefer), decoro (DeCoro-Rusinkiewicz pose-"
+                 "independent quadric over the clips), dsd (Mohr-Gleicher), rest (rest-pose quadric, distance-"
+                 "interpolated weights), static (OpenMesh's ModQuadricT as it is)");
   app.add_flag("--compare", opt.compare, "Run every method on the same input and print one table");
   app.add_option("--report", opt.report, "Write the summary as JSON");
   app.add_flag("--quiet", opt.quiet, "No progress and no pose list");
