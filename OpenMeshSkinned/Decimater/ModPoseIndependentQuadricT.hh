@@ -90,7 +90,7 @@ public:
   float collapse_priority(const CollapseInfo& ci) override {
     const CollapseResult& r = solver_->solve(ci);
     if (!r.valid || r.error > max_err_ * Base::error_tolerance_factor_) return float(Base::ILLEGAL_COLLAPSE);
-    solver_->note_legal_priority(ci.v0, r.error);
+    solver_->note_legal_priority(ci, r.error);
     return static_cast<float>(std::min<double>(r.error, FLT_MAX / 2));
   }
 

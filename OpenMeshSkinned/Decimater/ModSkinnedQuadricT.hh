@@ -48,7 +48,7 @@ public:
     const CollapseResult& r = solver_->solve(ci);
     if (!r.valid) return float(Base::ILLEGAL_COLLAPSE);
     if (r.error > max_err_ * Base::error_tolerance_factor_) return float(Base::ILLEGAL_COLLAPSE);
-    solver_->note_legal_priority(ci.v0, r.error);
+    solver_->note_legal_priority(ci, r.error);
     return static_cast<float>(std::min<double>(r.error, FLT_MAX / 2));
   }
 

@@ -123,6 +123,7 @@ public:
     quadric_.assign(nv * P_, PoseQuadric{});
     stamp_.assign(nv, 0);
     cache_.assign(mesh_.n_edges(), CacheEntry{});
+    target_.assign(nv, -1);
     if (!mesh_.get_property_handle(deferred_, kDeferredProperty)) mesh_.add_property(deferred_, kDeferredProperty);
     for (auto vh : mesh_.all_vertices()) mesh_.property(deferred_, vh) = false;
     for (auto vh : mesh_.vertices()) update_posed(vh);
@@ -210,13 +211,15 @@ public:
   // so its expensive binary checks (fold-over in every pose) can be skipped. The record is per v0 and is
   // forgotten at every collapse.
 
-  /// Called by the priority module for a collapse that every binary module accepted.
-  void note_legal_priority(VertexHandle v0, double error) {
-    if (best_v0_ != v0.idx()) {
-      best_v0_ = v0.idx();
+  /// Called by the priority module for a collapse that every binary module accepted. Also remembers,
+  /// per vertex, its cheapest legal collapse: the one DecimaterT stores as the vertex's target.
+  void note_legal_priority(const CollapseInfo& ci, double error) {
+    const int v0 = ci.v0.idx();
+    // Compared as DecimaterT compares priorities: in float, strictly smaller wins.
+    if (best_v0_ != v0 || static_cast<float>(error) < static_cast<float>(best_error_)) {
+      best_v0_ = v0;
       best_error_ = error;
-    } else {
-      best_error_ = std::min(best_error_, error);
+      if (static_cast<size_t>(v0) < target_.size()) target_[v0] = ci.v0v1.idx();
     }
   }
   /// Whether \p ci cannot win over a legal collapse already priced for the same v0.
@@ -287,10 +290,11 @@ public:
       update_posed(v1);
       if (mesh_.has_face_normals())
         for (auto fh : mesh_.vf_range(v1)) mesh_.set_normal(fh, mesh_.calc_face_normal(fh));
-      if (fold_check_) defer_stale_neighbours(v1);
     } else if (mesh_.property(h_inf_, v1).size() > max_influences_) {
       reduce_vertex(v1);
     }
+    // Moved or not, v1 now holds v0's faces: verdicts around it may be stale.
+    if (placement_ && fold_check_) defer_stale_neighbours(v1);
     ++stamp_[v1.idx()];
     ++stamp_[v0.idx()];
   }
@@ -347,36 +351,30 @@ private:
         mesh_.status(s).set_locked(false);
         mesh_.property(deferred_, s) = false;
       }
-    // A collapse z -> w is judged on the faces around z and around w, so z's verdict may be stale when
-    // v1 is a neighbour of z, or of w. Only a verdict that would now be wrong matters: lock z when such a
-    // collapse flips a face now (its stored one might be that one).
+    // A collapse z -> w is judged on the faces around z and around w, so z's stored collapse may be
+    // stale when v1 is a neighbour of z, or of w. Lock z when that collapse (the cheapest legal one the
+    // priority module priced for z) would now flip a face.
     Eigen::Vector3d rest;
     Influences w;
-    auto now_flips = [&](typename Mesh::HalfedgeHandle h) {
+    auto check = [&](VertexHandle z, bool must_end_next_to_v1) {
+      if (z == v1 || mesh_.status(z).locked() || std::find(ring_.begin(), ring_.end(), z) != ring_.end()) return;
+      const int t = target_[z.idx()];
+      if (t < 0) return;
+      const typename Mesh::HalfedgeHandle h(t);
+      if (mesh_.status(mesh_.edge_handle(h)).deleted() || mesh_.from_vertex_handle(h) != z) return;
+      if (must_end_next_to_v1 && mesh_.find_halfedge(mesh_.to_vertex_handle(h), v1) == typename Mesh::HalfedgeHandle())
+        return;
       const CollapseInfo zc(mesh_, h);
       placement_of(zc, rest, w);
-      return flips(zc, rest, w, fold_cos_) && mesh_.is_collapse_ok(h);
-    };
-    auto candidate = [&](VertexHandle z) {
-      return z != v1 && !mesh_.status(z).locked() && std::find(ring_.begin(), ring_.end(), z) == ring_.end();
-    };
-    auto lock = [&](VertexHandle z) {
-      mesh_.status(z).set_locked(true);
-      mesh_.property(deferred_, z) = true;
-      ++stats_.deferred;
+      if (flips(zc, rest, w, fold_cos_) && mesh_.is_collapse_ok(h)) {
+        mesh_.status(z).set_locked(true);
+        mesh_.property(deferred_, z) = true;
+        ++stats_.deferred;
+      }
     };
     for (auto z : mesh_.vv_range(v1)) {
-      if (candidate(z))
-        for (auto h : mesh_.voh_range(z))
-          if (now_flips(h)) {
-            lock(z);
-            break;
-          }
-      // Second ring: only the collapses that end on a neighbour of v1.
-      for (auto h : mesh_.vih_range(z)) {
-        const VertexHandle y = mesh_.from_vertex_handle(h);
-        if (candidate(y) && !mesh_.status(y).locked() && now_flips(h)) lock(y);
-      }
+      check(z, false);
+      for (auto y : mesh_.vv_range(z)) check(y, true);
     }
   }
 
@@ -596,6 +594,7 @@ private:
 
   bool pending_ = false;
   int best_v0_ = -1;
+  std::vector<int> target_;  // per vertex: halfedge index of its cheapest legal collapse, -1 when none
   double best_error_ = 0.0;
   std::vector<VertexHandle> ring_;
   mutable std::vector<std::array<int, 3>> ring_faces_;
