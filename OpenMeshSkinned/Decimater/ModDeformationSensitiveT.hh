@@ -30,6 +30,7 @@ public:
   void initialize() override { solver_->prepare(); }
 
   float collapse_priority(const CollapseInfo& ci) override {
+    solver_->begin_pricing(ci);
     double e = 0.0;
     for (int j = 0; j < solver_->n_poses(); ++j) {
       PoseQuadric q = solver_->quadric(ci.v0, j);

@@ -46,6 +46,7 @@ public:
   }
 
   float collapse_priority(const CollapseInfo& ci) override {
+    solver_->begin_pricing(ci);
     const CollapseResult& r = solver_->solve(ci);
     if (!r.valid || r.error > max_err_ * Base::error_tolerance_factor_) return float(Base::ILLEGAL_COLLAPSE);
     solver_->note_legal_priority(ci, r.error);

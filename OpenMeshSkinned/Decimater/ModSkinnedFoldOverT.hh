@@ -37,6 +37,7 @@ public:
   void initialize() override { solver_->prepare(); }
 
   float collapse_priority(const CollapseInfo& ci) override {
+    solver_->begin_pricing(ci);
     // Not the cheapest legal collapse from v0 anyway: the decimater will not pick it, skip the check.
     if (solver_->cannot_win(ci)) return float(Base::LEGAL_COLLAPSE);
     Eigen::Vector3d rest;

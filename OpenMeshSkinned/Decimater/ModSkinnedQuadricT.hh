@@ -45,6 +45,7 @@ public:
   void initialize() override { solver_->prepare(); }
 
   float collapse_priority(const CollapseInfo& ci) override {
+    solver_->begin_pricing(ci);
     const CollapseResult& r = solver_->solve(ci);
     if (!r.valid) return float(Base::ILLEGAL_COLLAPSE);
     if (r.error > max_err_ * Base::error_tolerance_factor_) return float(Base::ILLEGAL_COLLAPSE);

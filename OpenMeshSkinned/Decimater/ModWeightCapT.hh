@@ -42,6 +42,7 @@ public:
   }
 
   float collapse_priority(const CollapseInfo& ci) override {
+    solver_->begin_pricing(ci);
     Eigen::Vector3d rest;
     Influences w;
     solver_->placement_of(ci, rest, w);

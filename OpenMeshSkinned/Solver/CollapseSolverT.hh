@@ -222,6 +222,16 @@ public:
       if (static_cast<size_t>(v0) < target_.size()) target_[v0] = ci.v0v1.idx();
     }
   }
+  /// Every module calls this first in collapse_priority: the first call for a new v0 starts its sweep
+  /// (DecimaterT re-prices all collapses of a vertex in a row) and forgets its stored collapse.
+  void begin_pricing(const CollapseInfo& ci) {
+    const int v0 = ci.v0.idx();
+    if (sweep_v0_ == v0) return;
+    sweep_v0_ = v0;
+    best_v0_ = -1;
+    if (static_cast<size_t>(v0) < target_.size()) target_[v0] = -1;
+  }
+
   /// Whether \p ci cannot win over a legal collapse already priced for the same v0.
   bool cannot_win(const CollapseInfo& ci) {
     if (!placement_ || best_v0_ != ci.v0.idx()) return false;
@@ -248,6 +258,7 @@ public:
     if (pending_) return;
     pending_ = true;
     best_v0_ = -1;
+    sweep_v0_ = -1;
     pending_result_.valid = false;
     ring_.clear();
     for (auto vh : mesh_.vv_range(ci.v0)) ring_.push_back(vh);  // what DecimaterT re-asks afterwards
@@ -594,6 +605,7 @@ private:
 
   bool pending_ = false;
   int best_v0_ = -1;
+  int sweep_v0_ = -1;
   std::vector<int> target_;  // per vertex: halfedge index of its cheapest legal collapse, -1 when none
   double best_error_ = 0.0;
   std::vector<VertexHandle> ring_;

@@ -218,6 +218,24 @@ double WeightSolver::solve(const Mat& H, const Vec& start, Vec& alpha, const Mas
   const Mask active = active_in ? *active_in : Mask::Constant(m, true);
   const double mu = std::max(reg_ * H.diagonal().cwiseAbs().sum() / std::max(m, 1), 1e-300);
 
+  if (!force_ceres_ && active.count() == 2) {
+    // Two joints: a = (t, 1 - t) on the segment, a quadratic in t; its clamped stationary point is exact.
+    int i = 0;
+    while (!active[i]) ++i;
+    int j = i + 1;
+    while (!active[j]) ++j;
+    // f(t) = [t, 1-t] (H + mu I) [t, 1-t]^T - 2 mu (a0_i t + a0_j (1-t)) + const
+    const double hii = H(i, i) + mu, hjj = H(j, j) + mu, hij = H(i, j);
+    const double curv = hii + hjj - 2.0 * hij;  // f'' / 2
+    const double slope = hij - hjj - mu * (start[i] - start[j]);  // f'(0) / 2
+    double t = curv > 0.0 ? -slope / curv : (slope < 0.0 ? 1.0 : 0.0);
+    t = std::clamp(t, 0.0, 1.0);
+    alpha.setZero(m);
+    alpha[i] = t;
+    alpha[j] = 1.0 - t;
+    ++stats_.kkt_feasible;
+    return alpha.dot(H * alpha);
+  }
   if (!force_ceres_ && active_set(H, start, mu, active, active, alpha)) {
     ++stats_.kkt_feasible;
     return alpha.dot(H * alpha);
