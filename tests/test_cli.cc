@@ -1,4 +1,6 @@
 // Drives skinned-decimate as a technical artist would.
+#include "run_command.hh"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -13,19 +15,8 @@
 namespace fs = std::filesystem;
 
 namespace {
-struct CliRun {
-  int code;
-  std::string out;
-};
-CliRun cli(const std::string& args, const fs::path& cwd) {
-  const std::string cmd = "cd '" + cwd.string() + "' && '" + OMSK_CLI_EXE + "' " + args + " 2>&1";
-  CliRun r{0, ""};
-  FILE* p = popen(cmd.c_str(), "r");
-  char buf[512];
-  while (fgets(buf, sizeof buf, p)) r.out += buf;
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+omsk_test::CommandResult cli(const std::string& args, const fs::path& cwd) {
+  return omsk_test::run_command(OMSK_CLI_EXE, args, cwd);
 }
 fs::path scratch(const std::string& name) {
   const fs::path d = fs::temp_directory_path() / ("omsk_cli_" + std::to_string(::getpid())) / name;

@@ -1,4 +1,6 @@
 // Drives the drop-in example as a user would: its default run, a real character, and bad input.
+#include "run_command.hh"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,19 +12,8 @@
 namespace fs = std::filesystem;
 
 namespace {
-struct AppRun {
-  int code;
-  std::string out;
-};
-AppRun run(const std::string& args, const fs::path& cwd) {
-  const std::string cmd = "cd '" + cwd.string() + "' && '" + OMSK_EXAMPLE_EXE + "' " + args + " 2>&1";
-  AppRun r{0, ""};
-  FILE* p = popen(cmd.c_str(), "r");
-  char buf[512];
-  while (fgets(buf, sizeof buf, p)) r.out += buf;
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+omsk_test::CommandResult run(const std::string& args, const fs::path& cwd) {
+  return omsk_test::run_command(OMSK_EXAMPLE_EXE, args, cwd);
 }
 fs::path scratch() {
   const fs::path d = fs::temp_directory_path() / ("omsk_app_" + std::to_string(::getpid()));
@@ -33,14 +24,14 @@ fs::path scratch() {
 
 TEST(ExampleApp, DefaultRunWritesTheLegLod) {
   const auto d = scratch();
-  const AppRun r = run("", d);
+  const auto r = run("", d);
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_TRUE(fs::exists(d / "omsk-example-out" / "leg.glb")) << r.out;
 }
 
 TEST(ExampleApp, RealCharacterToGlb) {
   const auto d = scratch();
-  const AppRun r = run(std::string("'") + OMSK_TEST_MODELS + "/X/Testwuson.X' w.glb 0.25 4", d);
+  const auto r = run(std::string("'") + OMSK_TEST_MODELS + "/X/Testwuson.X' w.glb 0.25 4", d);
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_GT(fs::file_size(d / "w.glb"), 1000u);
 }
@@ -51,7 +42,7 @@ TEST(ExampleApp, BadInputFailsWithOneLineAndNoOutput) {
                                                                     "/X/Testwuson.X' out2.glb 1.5",
                                  std::string("'") + OMSK_TEST_MODELS + "/X/Testwuson.X' out3.txt"}) {
     SCOPED_TRACE(args);
-    const AppRun r = run(args, d);
+    const auto r = run(args, d);
     EXPECT_NE(r.code, 0);
     EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
   }

@@ -1,12 +1,7 @@
 #pragma once
 /** \file ModPoseIndependentQuadricT.hh */
 
-#include "OpenMeshSkinned/Skin/PoseSchedule.hh"
-#include "OpenMeshSkinned/Solver/CollapseSolverT.hh"
-#include "OpenMeshSkinned/Solver/VertexQuadrics.hh"
-#include "OpenMeshSkinned/Solver/WeightRules.hh"
-
-#include <OpenMesh/Tools/Decimater/ModBaseT.hh>
+#include "OpenMeshSkinned/Decimater/RestSpaceQuadricModuleT.hh"
 
 #include <boost/math/special_functions/erf.hpp>
 
@@ -44,62 +39,11 @@ struct JointDistribution {
  *  stratum gets one sample. With the default 64 samples that is the same estimator at a fixed budget.
  */
 template <typename MeshT>
-class ModPoseIndependentQuadricT : public OpenMesh::Decimater::ModBaseT<MeshT>, private EdgeModelT<MeshT> {
+class ModPoseIndependentQuadricT : public RestSpaceQuadricModuleT<MeshT> {
 public:
   DECIMATING_MODULE(ModPoseIndependentQuadricT, MeshT, PoseIndependentQuadric);
 
-  explicit ModPoseIndependentQuadricT(MeshT& mesh) : Base(mesh, false) {
-    solver_ = shared_solver(mesh, owns_property_);
-    solver_->set_placement(true);
-    solver_->set_edge_model(this);
-  }
-  ~ModPoseIndependentQuadricT() override {
-    solver_->set_edge_model(nullptr);
-    solver_->set_placement(false);
-    solver_->release_deferred();
-    if (owns_property_) release_shared_solver(Base::mesh());
-  }
-
-  void initialize() override {
-    solver_->prepare();
-    MeshT& mesh = Base::mesh();
-    h_inf_ = influences_handle(mesh);
-    const std::vector<Pose> poses = sample_poses();
-    samples_used_ = poses.size();
-    quadric_.assign(mesh.n_vertices(), PoseQuadric{});
-    std::vector<Eigen::Vector3d> posed(mesh.n_vertices());
-    std::vector<PoseQuadric> q(mesh.n_vertices());
-    for (const Pose& pose : poses) {
-      for (auto v : mesh.vertices()) posed[v.idx()] = skin_point(to_eigen(mesh.point(v)), mesh.property(h_inf_, v), pose);
-      std::fill(q.begin(), q.end(), PoseQuadric{});
-      accumulate_quadrics(
-          mesh, 1, [&](typename MeshT::VertexHandle v, int) { return posed[v.idx()]; },
-          [&](typename MeshT::VertexHandle v, int) -> PoseQuadric& { return q[v.idx()]; });
-      // Pull back: x -> M_v x maps the rest position to the posed one, so (M x)^T Q (M x) = x^T (M^T Q M) x.
-      for (auto v : mesh.vertices()) {
-        Eigen::Matrix4d M = Eigen::Matrix4d::Identity();
-        M.topRows<3>() = blend(mesh.property(h_inf_, v), pose);
-        const Eigen::Matrix4d R = M.transpose() * q[v.idx()].matrix() * M / double(poses.size());
-        PoseQuadric& out = quadric_[v.idx()];
-        const double add[10] = {R(0, 0), R(0, 1), R(0, 2), R(0, 3), R(1, 1), R(1, 2), R(1, 3), R(2, 2), R(2, 3), R(3, 3)};
-        for (int i = 0; i < 10; ++i) out.q[i] += add[i];
-      }
-    }
-  }
-
-  float collapse_priority(const CollapseInfo& ci) override {
-    solver_->begin_pricing(ci);
-    const CollapseResult& r = solver_->solve(ci);
-    if (!r.valid || r.error > max_err_ * Base::error_tolerance_factor_) return float(Base::ILLEGAL_COLLAPSE);
-    solver_->note_legal_priority(ci, r.error);
-    return static_cast<float>(std::min<double>(r.error, FLT_MAX / 2));
-  }
-
-  void preprocess_collapse(const CollapseInfo& ci) override { solver_->begin_collapse(ci); }
-  void postprocess_collapse(const CollapseInfo& ci) override {
-    quadric_[ci.v1.idx()] += quadric_[ci.v0.idx()];
-    solver_->end_collapse(ci);
-  }
+  explicit ModPoseIndependentQuadricT(MeshT& mesh) : RestSpaceQuadricModuleT<MeshT>(mesh) {}
 
   /// Monte Carlo samples (default 64). Set before initialize().
   void set_samples(int n) { samples_ = std::max(1, n); }
@@ -109,17 +53,36 @@ public:
   /// when no joint has a distribution).
   void set_joint_distribution(int joint, const JointDistribution& d) { joint_dist_[joint] = d; }
   void clear_joint_distributions() { joint_dist_.clear(); }
-  void set_weight_rule(WeightRule r) {
-    rule_ = r;
-    solver_->invalidate_cache();
-  }
-  WeightRule weight_rule() const { return rule_; }
-  void set_max_err(double err) { max_err_ = err; }
-  double max_err() const { return max_err_; }
+  /// Poses drawn by the last initialize().
   size_t samples_used() const { return samples_used_; }
-  CollapseSolverT<MeshT>& solver() { return *solver_; }
+
+protected:
+  void build_quadrics(std::vector<PoseQuadric>& quadrics) override {
+    MeshT& mesh = Base::mesh();
+    const auto h_inf = this->influences();
+    const std::vector<Pose> poses = sample_poses();
+    samples_used_ = poses.size();
+    std::vector<Eigen::Vector3d> posed(mesh.n_vertices());
+    std::vector<PoseQuadric> q(mesh.n_vertices());
+    for (const Pose& pose : poses) {
+      for (auto v : mesh.vertices()) posed[v.idx()] = skin_point(to_eigen(mesh.point(v)), mesh.property(h_inf, v), pose);
+      std::fill(q.begin(), q.end(), PoseQuadric{});
+      accumulate_quadrics(
+          mesh, 1, [&](typename MeshT::VertexHandle v, int) { return posed[v.idx()]; },
+          [&](typename MeshT::VertexHandle v, int) -> PoseQuadric& { return q[v.idx()]; });
+      // Pull back: x -> M_v x maps the rest position to the posed one, so (M x)^T Q (M x) = x^T (M^T Q M) x.
+      for (auto v : mesh.vertices()) {
+        Eigen::Matrix4d M = Eigen::Matrix4d::Identity();
+        M.topRows<3>() = blend(mesh.property(h_inf, v), pose);
+        const Eigen::Matrix4d R = M.transpose() * q[v.idx()].matrix() * M / double(poses.size());
+        const double add[10] = {R(0, 0), R(0, 1), R(0, 2), R(0, 3), R(1, 1), R(1, 2), R(1, 3), R(2, 2), R(2, 3), R(3, 3)};
+        for (int i = 0; i < 10; ++i) quadrics[v.idx()].q[i] += add[i];
+      }
+    }
+  }
 
 private:
+
   std::vector<Pose> sample_poses() {
     const MeshT& mesh = Base::mesh();
     const Skeleton& skel = skeleton(mesh);
@@ -174,27 +137,10 @@ private:
     return out;
   }
 
-  void solve_edge(typename MeshT::VertexHandle a, typename MeshT::VertexHandle b, CollapseResult& out) override {
-    PoseQuadric q = quadric_[a.idx()];
-    q += quadric_[b.idx()];
-    const Eigen::Vector3d pa = to_eigen(Base::mesh().point(a)), pb = to_eigen(Base::mesh().point(b));
-    out.position = optimal_point(q, pa, pb);
-    out.error = std::max(0.0, q(out.position));
-    out.weights = merge_weights(rule_, out.position, pa, Base::mesh().property(h_inf_, a), pb,
-                                Base::mesh().property(h_inf_, b), solver_->max_influences());
-    out.valid = out.position.allFinite();
-  }
-
-  std::shared_ptr<CollapseSolverT<MeshT>> solver_;
-  bool owns_property_ = false;
-  OpenMesh::VPropHandleT<Influences> h_inf_;
-  std::vector<PoseQuadric> quadric_;
   std::map<int, JointDistribution> joint_dist_;
   int samples_ = 64;
   uint64_t seed_ = 1;
   size_t samples_used_ = 0;
-  WeightRule rule_ = WeightRule::DistanceInterpolation;
-  double max_err_ = DBL_MAX;
 };
 
 }  // namespace OpenMeshSkinned

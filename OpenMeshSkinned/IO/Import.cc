@@ -228,12 +228,7 @@ ImportReport import_skinned(const std::string& path, SkinnedMesh& mesh, const Im
   if (rep.rigid) rep.warnings.push_back("no skin in the file: every mesh is bound rigidly to its node");
 
   mesh.clear();
-  mesh.request_vertex_status();
-  mesh.request_edge_status();
-  mesh.request_face_status();
-  mesh.request_halfedge_normals();
-  mesh.request_halfedge_texcoords2D();
-  mesh.request_face_normals();
+  request_skinned_attributes(mesh);
   const auto h_inf = add_skin(mesh);
   const auto h_fmat = face_material_handle(mesh);
 

@@ -46,12 +46,7 @@ SkinnedMesh loop_subdivide(const SkinnedMesh& in) {
   const auto hi = influences_handle(in);
   const auto hfm = face_material_handle(in);
   SkinnedMesh out;
-  out.request_vertex_status();
-  out.request_edge_status();
-  out.request_face_status();
-  out.request_face_normals();
-  out.request_halfedge_normals();
-  out.request_halfedge_texcoords2D();
+  request_skinned_attributes(out);
   const auto ho = add_skin(out);
   const auto hom = face_material_handle(out);
   skeleton(out) = skeleton(in);

@@ -38,12 +38,7 @@ Eigen::Vector2d square_outline(double u) {
 
 SkinnedMesh make_skinned_tube(const TubeOptions& opt, double bend_degrees) {
   SkinnedMesh mesh;
-  mesh.request_vertex_status();
-  mesh.request_edge_status();
-  mesh.request_face_status();
-  mesh.request_halfedge_normals();
-  mesh.request_halfedge_texcoords2D();
-  mesh.request_face_normals();
+  request_skinned_attributes(mesh);
   const auto h_inf = add_skin(mesh);
   const auto h_mat = face_material_handle(mesh);
 

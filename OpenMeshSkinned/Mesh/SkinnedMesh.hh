@@ -21,4 +21,14 @@ struct SkinnedTraits : public OpenMesh::DefaultTraits {
 
 using SkinnedMesh = OpenMesh::TriMesh_ArrayKernelT<SkinnedTraits>;
 
+/// Requests the dynamic attributes the importer, the generators and the decimater rely on.
+inline void request_skinned_attributes(SkinnedMesh& mesh) {
+  mesh.request_vertex_status();
+  mesh.request_edge_status();
+  mesh.request_face_status();
+  mesh.request_halfedge_normals();
+  mesh.request_halfedge_texcoords2D();
+  mesh.request_face_normals();
+}
+
 }  // namespace OpenMeshSkinned
