@@ -14,6 +14,13 @@ namespace OpenMeshSkinned {
  *  pose. The check uses the merged vertex where it will really be: the solver's position and weights
  *  when ModSkinnedQuadricT places vertices, v1 as it is otherwise.
  *
+ *  DecimaterT asks binary modules when it prices a collapse, not when it executes it, and re-prices only
+ *  the vertices around v0; a placing priority module moves v1 and can make a stored verdict wrong. The
+ *  shared solver therefore re-checks the stored collapses near v1 after each collapse and sets the vertex
+ *  status "locked" on those that would now fold, until the decimater re-prices them (it skips locked v0s).
+ *  These locks are released when the modules are destroyed or by release_deferred(); vertices the user
+ *  locked are never touched. What still slips through is counted in solver().stats().forced_flips.
+ *
  *  \code
  *  OpenMeshSkinned::ModSkinnedFoldOverT<Mesh>::Handle hf;
  *  dec.add(hf);
