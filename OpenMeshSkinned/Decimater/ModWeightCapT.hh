@@ -68,6 +68,9 @@ public:
   /// Input vertices reduced by the last initialize().
   size_t reduced_vertices() const { return reduced_; }
 
+  /// The shared solver: settings and counters.
+  CollapseSolverT<MeshT>& solver() { return *solver_; }
+
 private:
   std::shared_ptr<CollapseSolverT<MeshT>> solver_;
   bool owns_property_ = false;

@@ -83,6 +83,28 @@ void float_weights(const Influences& inf, int slots, std::vector<uint16_t>& join
   weights.insert(weights.end(), w.begin(), w.end());
 }
 
+// The normal of a corner, recomputed from the geometry as it is now (a LOD's vertices have moved): the
+// area-weighted normals of the faces around the vertex whose corner carries a stored normal within 60
+// degrees of this corner's, so hard edges and normal seams of the input stay hard.
+Eigen::Vector3d corner_normal(const SkinnedMesh& mesh, SkinnedMesh::HalfedgeHandle heh) {
+  const auto stored = mesh.normal(heh);
+  const Eigen::Vector3d ref(stored[0], stored[1], stored[2]);
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (auto h : mesh.vih_range(mesh.to_vertex_handle(heh))) {
+    if (mesh.is_boundary(h)) continue;
+    const auto other = mesh.normal(h);
+    const Eigen::Vector3d o(other[0], other[1], other[2]);
+    if (ref.norm() > 0.0 && o.norm() > 0.0 && o.dot(ref) < 0.5 * o.norm() * ref.norm()) continue;
+    const auto fn = mesh.calc_face_normal(mesh.face_handle(h));
+    const auto p0 = mesh.point(mesh.from_vertex_handle(h)), p1 = mesh.point(mesh.to_vertex_handle(h)),
+               p2 = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)));
+    const double area = 0.5 * ((p1 - p0) % (p2 - p0)).norm();
+    sum += area * Eigen::Vector3d(fn[0], fn[1], fn[2]);
+  }
+  if (sum.norm() > 0.0) return sum.normalized();
+  return ref.norm() > 0.0 ? ref.normalized() : Eigen::Vector3d(0.0, 0.0, 1.0);
+}
+
 void write_node_trs(tinygltf::Node& node, const Eigen::Matrix4d& local) {
   Eigen::Vector3d t, s;
   Eigen::Quaterniond r;
@@ -196,9 +218,7 @@ void export_gltf(const SkinnedMesh& mesh, const std::string& path) {
         const auto vh = mesh.to_vertex_handle(heh);
         Corner c{vh.idx(), {0, 0, 0}, {0, 0}};
         if (has_n) {
-          auto n = mesh.normal(heh);
-          if (n.norm() == 0.0) n = mesh.calc_face_normal(fh);
-          if (n.norm() > 0.0) n.normalize();
+          const Eigen::Vector3d n = corner_normal(mesh, heh);
           c.n = {static_cast<float>(n[0]), static_cast<float>(n[1]), static_cast<float>(n[2])};
         }
         if (has_uv) {
