@@ -74,6 +74,9 @@ public:
     }
   }
 
+  /// The shared solver: settings and counters (forced_flips, deferred).
+  CollapseSolverT<MeshT>& solver() { return *solver_; }
+
 private:
   void update() {
     const double rad = max_angle_deg_ * Base::error_tolerance_factor_ * M_PI / 180.0;
