@@ -182,7 +182,8 @@ int WeightSolver::violated(const Mat& H, const Vec& start, double mu, const Mask
     }
   if (n == 0) return -1;
   lambda /= n;
-  const double tol = 1e-9 * (std::abs(lambda) + g.cwiseAbs().maxCoeff() + 1e-300);
+  // Relative to the gradient, at the accuracy a nearly singular KKT solve delivers.
+  const double tol = 1e-7 * (std::abs(lambda) + g.cwiseAbs().maxCoeff() + 1e-300);
   int worst = -1;
   for (int k = 0; k < m; ++k)
     if (active[k] && alpha[k] == 0.0 && g[k] < lambda - tol && (worst < 0 || g[k] < g[worst])) worst = k;
