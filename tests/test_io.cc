@@ -286,3 +286,40 @@ TEST(Export, LodNormalsFollowTheMovedGeometry) {
   }
   EXPECT_GT(checked, 100u);
 }
+
+TEST(Export, MoreThanFourInfluencesUseASecondJointSet) {
+  // Six bones blending over wide zones: vertices with five or six influences need JOINTS_1/WEIGHTS_1.
+  TubeOptions opt;
+  opt.around = 8;
+  opt.along = 24;
+  opt.bones = 6;
+  opt.blend = 0.3;
+  Mesh mesh = make_skinned_tube(opt, 30.0);
+  const auto h = influences_handle(mesh);
+  int most = 0;
+  for (auto vh : mesh.vertices()) most = std::max(most, mesh.property(h, vh).size());
+  ASSERT_GT(most, 4);
+  const auto out = scratch("six.gltf");
+  export_gltf(mesh, out.string());
+  Mesh back;
+  import_skinned(out.string(), back);
+  ASSERT_EQ(back.n_vertices(), mesh.n_vertices());
+  const auto hb = influences_handle(back);
+  int most_back = 0;
+  for (auto vh : back.vertices()) most_back = std::max(most_back, back.property(hb, vh).size());
+  EXPECT_EQ(most_back, most);
+  // Same skin at the same place; joints are matched by name (the re-read scene numbers them anew).
+  const Skeleton& sm = skeleton(mesh);
+  const Skeleton& sb = skeleton(back);
+  for (auto vb : back.vertices()) {
+    for (auto vm : mesh.vertices())
+      if ((back.point(vb) - mesh.point(vm)).norm() < 1e-6) {
+        for (const auto& jw : mesh.property(h, vm)) {
+          const int jb = sb.find(sm.joints[jw.joint].name);
+          ASSERT_GE(jb, 0);
+          EXPECT_NEAR(back.property(hb, vb).weight_of(jb), jw.weight, 1e-6);
+        }
+        break;
+      }
+  }
+}
