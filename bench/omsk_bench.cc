@@ -47,9 +47,10 @@ size_t live_faces(const Mesh& m) {
   return n;
 }
 
-// The reference: OpenMesh's own static decimation.
-size_t run_static(Mesh mesh, size_t target, double& secs) {
-  secs = seconds([&] {
+// The reference: OpenMesh's own static decimation. Returns seconds (the mesh copy is not timed).
+double time_static(const Mesh& input, size_t target) {
+  Mesh mesh = input;
+  return seconds([&] {
     OpenMesh::Decimater::DecimaterT<Mesh> dec(mesh);
     OpenMesh::Decimater::ModQuadricT<Mesh>::Handle hq;
     OpenMesh::Decimater::ModNormalFlippingT<Mesh>::Handle hn;
@@ -58,38 +59,38 @@ size_t run_static(Mesh mesh, size_t target, double& secs) {
     dec.initialize();
     dec.decimate_to_faces(0, target);
   });
-  (void)mesh;
-  return 0;
+}
+
+// The skinned modules as the app uses them (fold-over at 90 degrees). Returns the solver's counters.
+json decimate_skinned(Mesh& mesh, size_t target, int cap, OpenMeshSkinned::CapStrategy strategy) {
+  OpenMesh::Decimater::DecimaterT<Mesh> dec(mesh);
+  OpenMeshSkinned::ModSkinnedQuadricT<Mesh>::Handle hq;
+  OpenMeshSkinned::ModWeightCapT<Mesh>::Handle hc;
+  OpenMeshSkinned::ModSkinnedFoldOverT<Mesh>::Handle hf;
+  dec.add(hq);
+  dec.add(hc);
+  dec.add(hf);
+  dec.module(hc).set_max_influences(cap);
+  dec.module(hc).set_strategy(strategy);
+  dec.initialize();
+  dec.decimate_to_faces(0, target);
+  const auto& st = dec.module(hq).solver().stats();
+  return {{"solves", st.solves},
+          {"cache_hits", st.cache_hits},
+          {"ceres_calls", st.weights.ceres_calls},
+          {"weight_solves", st.weights.solves},
+          {"deferred", st.deferred},
+          {"forced_flips", st.forced_flips}};
 }
 
 json run_workload(const std::string& name, const Mesh& input, size_t target, OpenMeshSkinned::CapStrategy strategy) {
-  double static_s = 0.0;
-  run_static(input, target, static_s);
-
+  const double static_s = time_static(input, target);
   Mesh mesh = input;
   json counts;
-  size_t faces_out = 0;
-  const double skinned_s = seconds([&] {
-    OpenMesh::Decimater::DecimaterT<Mesh> dec(mesh);
-    OpenMeshSkinned::ModSkinnedQuadricT<Mesh>::Handle hq;
-    OpenMeshSkinned::ModWeightCapT<Mesh>::Handle hc;
-    OpenMeshSkinned::ModSkinnedFoldOverT<Mesh>::Handle hf;
-    dec.add(hq);
-    dec.add(hc);
-    dec.add(hf);
-    dec.module(hc).set_max_influences(4);
-    dec.module(hc).set_strategy(strategy);
-    dec.initialize();
-    dec.decimate_to_faces(0, target);
-    const auto& st = dec.module(hq).solver().stats();
-    counts = {{"solves", st.solves},         {"cache_hits", st.cache_hits},
-              {"ceres_calls", st.weights.ceres_calls}, {"weight_solves", st.weights.solves},
-              {"deferred", st.deferred},     {"forced_flips", st.forced_flips}};
-    faces_out = live_faces(mesh);
-  });
+  const double skinned_s = seconds([&] { counts = decimate_skinned(mesh, target, 4, strategy); });
   json j = {{"workload", name},
             {"triangles_in", input.n_faces()},
-            {"triangles_out", faces_out},
+            {"triangles_out", live_faces(mesh)},
             {"target", target},
             {"poses", OpenMeshSkinned::example_poses(input).size()},
             {"static_s", static_s},
@@ -136,19 +137,7 @@ json cap_strategy(const std::string& file, int cap, OpenMeshSkinned::CapStrategy
   const auto sched = OpenMeshSkinned::make_pose_schedule(clips, 8, -1);
   OpenMeshSkinned::example_poses(original) = OpenMeshSkinned::poses_at(OpenMeshSkinned::skeleton(original), clips, sched.examples);
   Mesh mesh = original;
-  double secs = seconds([&] {
-    OpenMesh::Decimater::DecimaterT<Mesh> dec(mesh);
-    OpenMeshSkinned::ModSkinnedQuadricT<Mesh>::Handle hq;
-    OpenMeshSkinned::ModWeightCapT<Mesh>::Handle hc;
-    OpenMeshSkinned::ModSkinnedFoldOverT<Mesh>::Handle hf;
-    dec.add(hq);
-    dec.add(hc);
-    dec.add(hf);
-    dec.module(hc).set_max_influences(cap);
-    dec.module(hc).set_strategy(st);
-    dec.initialize();
-    dec.decimate_to_faces(0, original.n_faces() / 4);
-  });
+  const double secs = seconds([&] { decimate_skinned(mesh, original.n_faces() / 4, cap, st); });
   mesh.garbage_collection();
   const auto frames = OpenMeshSkinned::poses_at(OpenMeshSkinned::skeleton(original), clips, sched.held_out);
   double rms = 0.0;
