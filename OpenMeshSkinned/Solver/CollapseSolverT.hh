@@ -304,10 +304,11 @@ public:
     } else if (mesh_.property(h_inf_, v1).size() > max_influences_) {
       reduce_vertex(v1);
     }
-    // Moved or not, v1 now holds v0's faces: verdicts around it may be stale.
-    if (placement_ && fold_check_) defer_stale_neighbours(v1);
     ++stamp_[v1.idx()];
     ++stamp_[v0.idx()];
+    // Moved or not, v1 now holds v0's faces: verdicts around it may be stale. (After the stamps: the
+    // re-checks must not reuse answers cached for v1 as it was.)
+    if (placement_ && fold_check_) defer_stale_neighbours(v1);
   }
 
   /// Unlocks every vertex the solver deferred (see defer_stale_neighbours()); modules call it when done.
