@@ -111,3 +111,51 @@ TEST(ModSkinnedQuadric, MovesTheSurvivorAndGivesItSolvedWeights) {
   EXPECT_GT(moved, 0u);
   EXPECT_GT(new_weights, 0u);
 }
+
+TEST(ModSkinnedQuadric, MovedVerticesKeepTheirTextureMapping) {
+  // A bumpy sheet whose UVs are its (x, y): wherever a vertex moves, its corners must read the UV of the
+  // place it moved to, interpolated from the faces it came from.
+  Mesh mesh;
+  request_skinned_attributes(mesh);
+  const auto h = add_skin(mesh);
+  Joint j;
+  j.name = "root";
+  skeleton(mesh).joints = {j};
+  const int n = 24;
+  std::vector<Mesh::VertexHandle> vh;
+  for (int i = 0; i <= n; ++i)
+    for (int k = 0; k <= n; ++k) {
+      const double x = double(k) / n, y = double(i) / n;
+      vh.push_back(mesh.add_vertex(Mesh::Point(x, y, 0.05 * std::sin(6.0 * x) * std::cos(5.0 * y))));
+      mesh.property(h, vh.back()) = Influences::rigid(0);
+    }
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < n; ++k) {
+      const auto a = vh[i * (n + 1) + k], b = vh[i * (n + 1) + k + 1], c = vh[(i + 1) * (n + 1) + k],
+                 d = vh[(i + 1) * (n + 1) + k + 1];
+      mesh.add_face(a, b, d);
+      mesh.add_face(a, d, c);
+    }
+  for (auto heh : mesh.halfedges()) {
+    const auto p = mesh.point(mesh.to_vertex_handle(heh));
+    mesh.set_texcoord2D(heh, Mesh::TexCoord2D(float(p[0]), float(p[1])));
+  }
+  example_poses(mesh) = {Pose::identity(1)};
+  omsk_test::Modules only_quadric;
+  only_quadric.cap = only_quadric.fold = false;
+  omsk_test::decimate(mesh, 0.2, only_quadric);
+  size_t corners = 0;
+  double worst = 0.0;
+  for (auto heh : mesh.halfedges()) {
+    if (mesh.is_boundary(heh)) continue;
+    const auto p = mesh.point(mesh.to_vertex_handle(heh));
+    const auto t = mesh.texcoord2D(heh);
+    worst = std::max(worst, std::hypot(t[0] - p[0], t[1] - p[1]));
+    ++corners;
+  }
+  EXPECT_GT(corners, 100u);
+  // UVs are linear in x, y on every original face, so interpolation is exact up to how far the vertex
+  // left the original surface (the bumps are 0.05 high).
+  ::testing::Test::RecordProperty("worst_uv_error", std::to_string(worst));
+  EXPECT_LT(worst, 0.005);
+}

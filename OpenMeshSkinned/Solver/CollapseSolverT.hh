@@ -262,6 +262,7 @@ public:
     pending_result_.valid = false;
     ring_.clear();
     for (auto vh : mesh_.vv_range(ci.v0)) ring_.push_back(vh);  // what DecimaterT re-asks afterwards
+    record_uv_sources(ci);
     if (!placement_) return;
     pending_result_ = solve(ci);
     if (!fold_check_ || !pending_result_.valid || !flips(ci, pending_result_.position, pending_result_.weights, fold_cos_))
@@ -304,6 +305,8 @@ public:
     } else if (mesh_.property(h_inf_, v1).size() > max_influences_) {
       reduce_vertex(v1);
     }
+    // Moved or not, v1's corners that came from v0 carry v0's UVs: re-interpolate all of them.
+    reassign_uvs(v1, to_eigen(mesh_.point(v1)));
     ++stamp_[v1.idx()];
     ++stamp_[v0.idx()];
     // Moved or not, v1 now holds v0's faces: verdicts around it may be stale. (After the stamps: the
@@ -388,6 +391,111 @@ private:
       check(z, false);
       for (auto y : mesh_.vv_range(z)) check(y, true);
     }
+  }
+
+  // ---- texture coordinates of a moved vertex ----------------------------------------------------------
+  // After a collapse v1's corners hold stale UVs (v0's, or v1's at a position v1 has left): each corner
+  // is re-interpolated in the faces around the collapse as they were, restricted to faces of the same UV chart (those that give one of the corner's
+  // two other vertices the same UV), at the closest point of the closest such face.
+  struct UvSource {
+    Eigen::Vector3d p[3];
+    Eigen::Vector2d uv[3];
+    int v[3];
+  };
+
+  void record_uv_sources(const CollapseInfo& ci) {
+    uv_sources_.clear();
+    if (!mesh_.has_halfedge_texcoords2D()) return;
+    for (const VertexHandle c : {ci.v0, ci.v1})
+      for (auto fh : mesh_.vf_range(c)) {
+        UvSource s;
+        int k = 0;
+        for (auto h : mesh_.fh_range(fh)) {
+          const auto t = mesh_.texcoord2D(h);
+          s.p[k] = to_eigen(mesh_.point(mesh_.to_vertex_handle(h)));
+          s.uv[k] = Eigen::Vector2d(t[0], t[1]);
+          s.v[k] = mesh_.to_vertex_handle(h).idx();
+          ++k;
+        }
+        uv_sources_.push_back(s);
+      }
+  }
+
+  void reassign_uvs(VertexHandle v1, const Eigen::Vector3d& p) {
+    if (uv_sources_.empty() || !mesh_.has_halfedge_texcoords2D()) return;
+    for (auto h : mesh_.vih_range(v1)) {
+      if (mesh_.is_boundary(h)) continue;
+      const auto hb = mesh_.next_halfedge_handle(h), hc = mesh_.next_halfedge_handle(hb);
+      const VertexHandle b = mesh_.to_vertex_handle(hb), c = mesh_.to_vertex_handle(hc);
+      const auto tb = mesh_.texcoord2D(hb), tc = mesh_.texcoord2D(hc);
+      // The chart: source faces that give b or c the corner's UV, grown across edges whose two ends
+      // carry the same UVs on both sides (no seam).
+      const size_t ns = uv_sources_.size();
+      in_chart_.assign(ns, 0);
+      auto same = [](const Eigen::Vector2d& x, const Eigen::Vector2d& y) { return (x - y).norm() < 1e-6; };
+      for (size_t i = 0; i < ns; ++i)
+        for (int k = 0; k < 3; ++k) {
+          const UvSource& s = uv_sources_[i];
+          if ((s.v[k] == b.idx() && same(s.uv[k], Eigen::Vector2d(tb[0], tb[1]))) ||
+              (s.v[k] == c.idx() && same(s.uv[k], Eigen::Vector2d(tc[0], tc[1]))))
+            in_chart_[i] = 1;
+        }
+      for (bool grew = true; grew;) {
+        grew = false;
+        for (size_t i = 0; i < ns; ++i) {
+          if (in_chart_[i]) continue;
+          for (size_t j = 0; j < ns && !in_chart_[i]; ++j) {
+            if (!in_chart_[j]) continue;
+            int shared = 0;
+            for (int a = 0; a < 3; ++a)
+              for (int d = 0; d < 3; ++d)
+                shared += uv_sources_[i].v[a] == uv_sources_[j].v[d] && same(uv_sources_[i].uv[a], uv_sources_[j].uv[d]);
+            if (shared >= 2) in_chart_[i] = grew = 1;
+          }
+        }
+      }
+      double best = HUGE_VAL;
+      Eigen::Vector2d uv;
+      for (size_t i = 0; i < ns; ++i) {
+        if (!in_chart_[i]) continue;
+        const UvSource& s = uv_sources_[i];
+        Eigen::Vector3d bary;
+        const double d = closest_barycentric(s.p, p, bary);
+        if (d < best) {
+          best = d;
+          uv = bary[0] * s.uv[0] + bary[1] * s.uv[1] + bary[2] * s.uv[2];
+        }
+      }
+      if (best < HUGE_VAL) mesh_.set_texcoord2D(h, typename Mesh::TexCoord2D(uv.x(), uv.y()));
+    }
+  }
+
+  // Squared distance from q to triangle t, and the barycentric coordinates of the closest point.
+  static double closest_barycentric(const Eigen::Vector3d (&t)[3], const Eigen::Vector3d& q, Eigen::Vector3d& bary) {
+    const Eigen::Vector3d e0 = t[1] - t[0], e1 = t[2] - t[0], d = q - t[0];
+    const double a = e0.dot(e0), b = e0.dot(e1), c = e1.dot(e1), det = a * c - b * b;
+    if (det > 1e-300 * (a * c + 1e-300)) {
+      const double u = (c * e0.dot(d) - b * e1.dot(d)) / det, v = (a * e1.dot(d) - b * e0.dot(d)) / det;
+      if (u >= 0.0 && v >= 0.0 && u + v <= 1.0) {
+        bary = Eigen::Vector3d(1.0 - u - v, u, v);
+        return (t[0] + u * e0 + v * e1 - q).squaredNorm();
+      }
+    }
+    // Outside (or degenerate): the closest point lies on an edge.
+    double best = HUGE_VAL;
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector3d &x = t[i], &y = t[(i + 1) % 3];
+      const double len2 = (y - x).squaredNorm();
+      const double s = len2 > 0.0 ? std::clamp((q - x).dot(y - x) / len2, 0.0, 1.0) : 0.0;
+      const double dist = (x + s * (y - x) - q).squaredNorm();
+      if (dist < best) {
+        best = dist;
+        bary.setZero();
+        bary[i] = 1.0 - s;
+        bary[(i + 1) % 3] = s;
+      }
+    }
+    return best;
   }
 
   void update_posed(VertexHandle v) {
@@ -610,6 +718,8 @@ private:
   std::vector<int> target_;  // per vertex: halfedge index of its cheapest legal collapse, -1 when none
   double best_error_ = 0.0;
   std::vector<VertexHandle> ring_;
+  std::vector<UvSource> uv_sources_;
+  std::vector<char> in_chart_;
   mutable std::vector<std::array<int, 3>> ring_faces_;
   OpenMesh::VPropHandleT<bool> deferred_;
   CollapseResult pending_result_;
