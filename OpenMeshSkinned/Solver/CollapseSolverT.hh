@@ -124,6 +124,14 @@ public:
     stamp_.assign(nv, 0);
     cache_.assign(mesh_.n_edges(), CacheEntry{});
     target_.assign(nv, -1);
+    // UV bookkeeping only when there are UVs to keep (generated meshes carry the attribute, all zero).
+    uv_active_ = false;
+    if (mesh_.has_halfedge_texcoords2D())
+      for (auto h : mesh_.halfedges())
+        if (mesh_.texcoord2D(h)[0] != 0 || mesh_.texcoord2D(h)[1] != 0) {
+          uv_active_ = true;
+          break;
+        }
     if (!mesh_.get_property_handle(deferred_, kDeferredProperty)) mesh_.add_property(deferred_, kDeferredProperty);
     for (auto vh : mesh_.all_vertices()) mesh_.property(deferred_, vh) = false;
     for (auto vh : mesh_.vertices()) update_posed(vh);
@@ -405,7 +413,7 @@ private:
 
   void record_uv_sources(const CollapseInfo& ci) {
     uv_sources_.clear();
-    if (!mesh_.has_halfedge_texcoords2D()) return;
+    if (!uv_active_) return;
     for (const VertexHandle c : {ci.v0, ci.v1})
       for (auto fh : mesh_.vf_range(c)) {
         UvSource s;
@@ -720,6 +728,7 @@ private:
   std::vector<VertexHandle> ring_;
   std::vector<UvSource> uv_sources_;
   std::vector<char> in_chart_;
+  bool uv_active_ = false;
   mutable std::vector<std::array<int, 3>> ring_faces_;
   OpenMesh::VPropHandleT<bool> deferred_;
   CollapseResult pending_result_;
