@@ -48,6 +48,7 @@ struct Options {
   bool poses_given = false;
   bool ratio_given = false;
   bool compare = false;
+  bool bind_pose = true;
 };
 
 struct UsageError : std::runtime_error {
@@ -248,11 +249,14 @@ json run_character(const Mesh& mesh, const std::string& name, const Options& opt
     const int clip_index = resolve_clip(clips, opt.pose_clip, name);
     sched = make_pose_schedule(clips, opt.poses, clip_index);
     example_poses(work) = poses_at(skeleton(work), clips, sched.examples);
+    // The bind pose too, unless asked not to: it is the pose every other tool judges, and a handful of
+    // clip frames can miss the neutral configuration entirely.
+    if (opt.bind_pose) example_poses(work).push_back(Pose::identity(skeleton(work).size()));
     heldout = poses_at(skeleton(work), clips, sched.held_out.empty() ? sched.examples : sched.held_out);
     if (!opt.quiet) {
       std::cout << name << ": example poses at";
       for (const auto& t : sched.examples) std::cout << " " << clips[t.clip].name << "@" << fmt(t.time, 3) << "s";
-      std::cout << "\n";
+      std::cout << (opt.bind_pose ? " + bind pose" : "") << "\n";
     }
   }
 
@@ -283,6 +287,7 @@ json run_character(const Mesh& mesh, const std::string& name, const Options& opt
               {"heldout_rms", lod.rms},
               {"heldout_hausdorff", lod.hausdorff},
               {"example_pose_times", times_json(clips, sched.examples)},
+              {"bind_pose_in_examples", opt.bind_pose && !clips.empty()},
               {"heldout_times", times_json(clips, sched.held_out)}};
     if (write_files) l["file"] = lod.file;
     lods.push_back(l);
@@ -398,6 +403,7 @@ int main(int argc, char** argv) {
   app.add_flag("--compare", opt.compare, "Run every method on the same input and print one table");
   app.add_option("--report", opt.report, "Write the summary as JSON");
   app.add_flag("--quiet", opt.quiet, "No progress and no pose list");
+  app.add_flag("!--no-bind-pose", opt.bind_pose, "Do not add the bind pose to the example poses");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
