@@ -2,6 +2,7 @@
 // Shared test helpers: real characters, invariant checks, and a flip-watching module.
 
 #include <OpenMeshSkinned/IO/Import.hh>
+#include <OpenMeshSkinned/Mesh/Procedural.hh>
 #include <OpenMeshSkinned/Skin/LinearBlendSkinning.hh>
 #include <OpenMeshSkinned/Skin/SkinProperties.hh>
 
@@ -28,6 +29,25 @@ inline Mesh load_character(const std::string& rel, int poses = 8) {
     OpenMeshSkinned::example_poses(mesh) =
         OpenMeshSkinned::sample_poses_evenly(OpenMeshSkinned::skeleton(mesh), clips[0], poses);
   return mesh;
+}
+
+/// Most influences any vertex carries.
+template <typename M>
+int max_influences(const M& mesh) {
+  const auto h = OpenMeshSkinned::influences_handle(mesh);
+  int n = 0;
+  for (auto vh : mesh.vertices()) n = std::max(n, mesh.property(h, vh).size());
+  return n;
+}
+
+/// A six-bone tube whose joints blend over wide zones, so vertices carry up to six influences.
+inline Mesh many_influence_tube(int around, int along) {
+  OpenMeshSkinned::TubeOptions opt;
+  opt.around = around;
+  opt.along = along;
+  opt.bones = 6;
+  opt.blend = 0.3;
+  return OpenMeshSkinned::make_skinned_tube(opt, 60.0);
 }
 
 /// Weights >= 0, sum 1 within 1e-6, at most \p cap influences, joints in range; manifold vertices.

@@ -9,21 +9,9 @@ using omsk_test::Mesh;
 
 namespace {
 
-int max_influences(const Mesh& mesh) {
-  const auto h = influences_handle(mesh);
-  int n = 0;
-  for (auto vh : mesh.vertices()) n = std::max(n, mesh.property(h, vh).size());
-  return n;
-}
-
-// A six-bone tube whose joints blend over wide zones, so vertices carry up to six influences.
+// Six bones, up to six influences, four example poses.
 Mesh many_influence_tube() {
-  TubeOptions opt;
-  opt.around = 16;
-  opt.along = 48;
-  opt.bones = 6;
-  opt.blend = 0.3;
-  Mesh mesh = make_skinned_tube(opt, 60.0);
+  Mesh mesh = omsk_test::many_influence_tube(16, 48);
   example_poses(mesh) = sample_poses_evenly(skeleton(mesh), clips(mesh)[0], 4);
   return mesh;
 }
@@ -32,7 +20,7 @@ Mesh many_influence_tube() {
 
 TEST(ModWeightCap, ReducesInputVerticesAboveTheCapBySolvingNotTruncating) {
   Mesh mesh = many_influence_tube();
-  ASSERT_GT(max_influences(mesh), 2);
+  ASSERT_GT(omsk_test::max_influences(mesh), 2);
   const Mesh original = mesh;
   OpenMesh::Decimater::DecimaterT<Mesh> dec(mesh);
   ModSkinnedQuadricT<Mesh>::Handle hq;
@@ -42,7 +30,7 @@ TEST(ModWeightCap, ReducesInputVerticesAboveTheCapBySolvingNotTruncating) {
   dec.module(hc).set_max_influences(2);
   ASSERT_TRUE(dec.initialize());
   EXPECT_GT(dec.module(hc).reduced_vertices(), 0u);
-  EXPECT_LE(max_influences(mesh), 2);
+  EXPECT_LE(omsk_test::max_influences(mesh), 2);
   omsk_test::expect_valid_skin(mesh, 2);
   // Solving beats truncation where it matters, the posed surface: in the example poses the reduced mesh
   // stays closer to the original than plain top-2-and-renormalise does.
