@@ -394,7 +394,7 @@ int main(int argc, char** argv) {
   r->excludes(f)->excludes(l);
   f->excludes(l);
   app.add_option("--max-influences", opt.max_influences, "Bone influences per vertex at most (1-8, default 4)");
-  app.add_option("--poses", opt.poses, "Example poses: K evenly spaced times over the clip, both ends included (default 8)");
+  app.add_option("--poses", opt.poses, "Example poses: K evenly spaced times over the clip, both ends included, plus the bind pose (default 8)");
   app.add_option("--pose-clip", opt.pose_clip, "Clip (name or index) for the example poses; default: all clips end to end");
   app.add_option("--method", opt.method,
                  "Priority module: skinned (default, Landreneau-Schaefer), decoro (DeCoro-Rusinkiewicz pose-"

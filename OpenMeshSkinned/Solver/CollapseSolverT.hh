@@ -28,6 +28,7 @@
 #include <OpenMesh/Tools/Decimater/CollapseInfoT.hh>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <memory>
