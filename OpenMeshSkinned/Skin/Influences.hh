@@ -85,16 +85,6 @@ public:
     normalize();
   }
 
-  /// Drops influences with weight <= \p eps and rescales the rest to sum to one.
-  void prune(double eps) {
-    int k = 0;
-    for (int i = 0; i < size_; ++i)
-      if (data_[i].weight > eps) data_[k++] = data_[i];
-    size_ = k;
-    normalize();
-    sort();
-  }
-
   void normalize() {
     const double s = sum();
     if (s > 0.0)

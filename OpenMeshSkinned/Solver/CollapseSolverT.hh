@@ -353,7 +353,6 @@ public:
     stats_.weights = weights_.stats();
     return stats_;
   }
-  size_t placement_fallbacks() const { return stats_.placement_fallbacks; }
   WeightSolver& weight_solver() { return weights_; }
 
 private:

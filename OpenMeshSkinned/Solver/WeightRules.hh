@@ -27,14 +27,6 @@ namespace OpenMeshSkinned {
 
 enum class WeightRule { NearestEndpoint, DistanceInterpolation, PowerSkinning };
 
-inline const char* to_string(WeightRule r) {
-  switch (r) {
-    case WeightRule::NearestEndpoint: return "nearest";
-    case WeightRule::DistanceInterpolation: return "distance";
-    default: return "power";
-  }
-}
-
 /// The merged skin for an edge (p0, w0)-(p1, w1) whose vertex lands at \p p, within \p cap influences.
 inline Influences merge_weights(WeightRule rule, const Eigen::Vector3d& p, const Eigen::Vector3d& p0,
                                 const Influences& w0, const Eigen::Vector3d& p1, const Influences& w1, int cap) {
