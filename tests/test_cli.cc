@@ -1,5 +1,6 @@
 // Drives skinned-decimate as a technical artist would.
 #include "run_command.hh"
+#include "validate.hh"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -38,6 +39,7 @@ TEST(Cli, LodChainWithReportOnARealCharacter) {
   for (int i = 0; i < 3; ++i) {
     const auto& l = rep["lods"][i];
     const fs::path file = d / ("w_lod" + std::to_string(i + 1) + ".glb");
+    omsk_test::expect_valid_gltf(file.string());
     ASSERT_TRUE(fs::exists(file)) << file;
     EXPECT_LT(l["faces"].get<size_t>(), prev_faces);
     EXPECT_LE(l["max_influences"].get<int>(), 4);

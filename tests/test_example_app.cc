@@ -1,5 +1,6 @@
 // Drives the drop-in example as a user would: its default run, a real character, and bad input.
 #include "run_command.hh"
+#include "validate.hh"
 
 #include <gtest/gtest.h>
 
@@ -34,6 +35,7 @@ TEST(ExampleApp, RealCharacterToGlb) {
   const auto r = run(std::string("'") + OMSK_TEST_MODELS + "/X/Testwuson.X' w.glb 0.25 4", d);
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_GT(fs::file_size(d / "w.glb"), 1000u);
+  omsk_test::expect_valid_gltf((d / "w.glb").string());
 }
 
 TEST(ExampleApp, BadInputFailsWithOneLineAndNoOutput) {

@@ -1,4 +1,5 @@
 #include "helpers.hh"
+#include "validate.hh"
 
 #include <OpenMeshSkinned/IO/ExportGltf.hh>
 #include <OpenMeshSkinned/Mesh/Procedural.hh>
@@ -248,6 +249,7 @@ TEST(Export, RefusesBadTargetsAndLeavesNothingBehind) {
   // A good write leaves exactly the target, no temporary.
   const fs::path good = scratch("good.glb");
   export_gltf(mesh, good.string());
+  omsk_test::expect_valid_gltf(good.string());
   EXPECT_GT(fs::file_size(good), 0u);
   for (const auto& e : fs::directory_iterator(good.parent_path()))
     EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << e.path();
@@ -260,6 +262,7 @@ TEST(Export, InputFileIsNeverModified) {
   Mesh mesh;
   import_skinned(src, mesh);
   export_gltf(mesh, scratch("simple.gltf").string());
+  omsk_test::expect_valid_gltf(scratch("simple.gltf").string());
   EXPECT_EQ(fs::last_write_time(src), before);
   EXPECT_EQ(fs::file_size(src), size);
 }
@@ -271,6 +274,7 @@ TEST(Export, LodNormalsFollowTheMovedGeometry) {
   omsk_test::decimate(mesh, 0.1);
   const auto out = scratch("lod_normals.glb");
   export_gltf(mesh, out.string());
+  omsk_test::expect_valid_gltf(out.string());
   Mesh back;
   import_skinned(out.string(), back);
   size_t checked = 0;
@@ -295,6 +299,7 @@ TEST(Export, MoreThanFourInfluencesUseASecondJointSet) {
   ASSERT_GT(most, 4);
   const auto out = scratch("six.gltf");
   export_gltf(mesh, out.string());
+  omsk_test::expect_valid_gltf(out.string());
   Mesh back;
   import_skinned(out.string(), back);
   ASSERT_EQ(back.n_vertices(), mesh.n_vertices());

@@ -1,6 +1,7 @@
 // Import -> export glTF -> re-import: every clip, posed at 20 times, must put every vertex where the
 // original puts it, within 1e-5 of the bounding-box diagonal.
 #include "helpers.hh"
+#include "validate.hh"
 
 #include <OpenMeshSkinned/Eval/SurfaceDistance.hh>
 #include <OpenMeshSkinned/IO/ExportGltf.hh>
@@ -19,6 +20,7 @@ void expect_round_trip(const std::string& rel, const std::string& ext) {
   import_skinned(omsk_test::model(rel), a);
   const fs::path out = fs::temp_directory_path() / ("omsk_rt_" + std::to_string(::getpid()) + ext);
   export_gltf(a, out.string());
+  omsk_test::expect_valid_gltf(out.string());
   Mesh b;
   import_skinned(out.string(), b);
   fs::remove(out);

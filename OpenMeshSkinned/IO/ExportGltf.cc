@@ -1,5 +1,6 @@
 #include "OpenMeshSkinned/IO/ExportGltf.hh"
 
+#include "OpenMeshSkinned/Skin/Morph.hh"
 #include "OpenMeshSkinned/Skin/SkinProperties.hh"
 
 #include <tiny_gltf.h>
@@ -95,14 +96,17 @@ Eigen::Vector3d corner_normal(const SkinnedMesh& mesh, SkinnedMesh::HalfedgeHand
     const auto other = mesh.normal(h);
     const Eigen::Vector3d o(other[0], other[1], other[2]);
     if (ref.norm() > 0.0 && o.norm() > 0.0 && o.dot(ref) < 0.5 * o.norm() * ref.norm()) continue;
-    const auto fn = mesh.calc_face_normal(mesh.face_handle(h));
+    // The cross product is the face normal scaled by twice the area: area weighting without normalising
+    // a degenerate face's zero vector (which gives NaN).
     const auto p0 = mesh.point(mesh.from_vertex_handle(h)), p1 = mesh.point(mesh.to_vertex_handle(h)),
                p2 = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)));
-    const double area = 0.5 * ((p1 - p0) % (p2 - p0)).norm();
-    sum += area * Eigen::Vector3d(fn[0], fn[1], fn[2]);
+    const auto c = (p1 - p0) % (p2 - p0);
+    sum += Eigen::Vector3d(c[0], c[1], c[2]);
   }
-  if (sum.norm() > 0.0) return sum.normalized();
-  return ref.norm() > 0.0 ? ref.normalized() : Eigen::Vector3d(0.0, 0.0, 1.0);
+  const double len = sum.norm();
+  if (len > 0.0 && std::isfinite(len)) return sum / len;
+  const double rlen = ref.norm();
+  return rlen > 0.0 && std::isfinite(rlen) ? Eigen::Vector3d(ref / rlen) : Eigen::Vector3d(0.0, 0.0, 1.0);
 }
 
 void write_node_trs(tinygltf::Node& node, const Eigen::Matrix4d& local) {
@@ -159,9 +163,13 @@ void export_gltf(const SkinnedMesh& mesh, const std::string& path) {
   tinygltf::Skin skin;
   skin.name = "skin";
   std::vector<float> ibm;
-  for (const Joint& j : skel.joints)
-    for (int c = 0; c < 4; ++c)
-      for (int r = 0; r < 4; ++r) ibm.push_back(static_cast<float>(j.inverse_bind(r, c)));  // column-major
+  for (const Joint& j : skel.joints) {
+    if (!j.inverse_bind.allFinite()) throw fail("joint \"" + j.name + "\" has a non-finite inverse bind matrix");
+    for (int c = 0; c < 4; ++c) {  // column-major; the last row exactly (0, 0, 0, 1), as the spec requires
+      for (int r = 0; r < 3; ++r) ibm.push_back(static_cast<float>(j.inverse_bind(r, c)));
+      ibm.push_back(c == 3 ? 1.0f : 0.0f);
+    }
+  }
   skin.inverseBindMatrices = buf.add(ibm, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_MAT4, n_joints, 0);
   for (int i = 0; i < n_joints; ++i) skin.joints.push_back(i);
   model.skins.push_back(skin);
@@ -171,9 +179,15 @@ void export_gltf(const SkinnedMesh& mesh, const std::string& path) {
     gm.name = m.name;
     gm.pbrMetallicRoughness.baseColorFactor = {m.base_color[0], m.base_color[1], m.base_color[2], m.base_color[3]};
     gm.pbrMetallicRoughness.metallicFactor = 0.0;
-    if (!m.base_color_texture.empty()) {
+    if (!m.base_color_image.data.empty()) {
+      // Inside the file (a buffer view), so that the LOD carries its textures wherever it goes.
       tinygltf::Image img;
-      img.uri = m.base_color_texture;
+      img.name = m.base_color_image.name;
+      img.mimeType = m.base_color_image.mime_type;
+      img.bufferView = model.accessors[buf.add(m.base_color_image.data, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                                               TINYGLTF_TYPE_SCALAR, m.base_color_image.data.size(), 0)]
+                           .bufferView;
+      model.accessors.pop_back();  // the view is what the image needs; no accessor points at image bytes
       model.images.push_back(img);
       tinygltf::Texture tex;
       tex.source = static_cast<int>(model.images.size()) - 1;
@@ -204,9 +218,13 @@ void export_gltf(const SkinnedMesh& mesh, const std::string& path) {
     return false;
   }();
 
+  OpenMesh::VPropHandleT<MorphDeltas> h_delta;
+  const size_t n_targets = morph_deltas_handle(mesh, h_delta) ? morph_targets(mesh).size() : 0;
+
   tinygltf::Mesh gmesh;
   gmesh.name = "mesh";
   for (const auto& [mat, faces] : by_material) {
+    std::vector<std::vector<float>> deltas(n_targets);
     std::map<Corner, uint32_t> index_of;
     std::vector<float> pos, nrm, uv;
     std::vector<uint16_t> joints;
@@ -228,6 +246,13 @@ void export_gltf(const SkinnedMesh& mesh, const std::string& path) {
         auto [it, inserted] = index_of.emplace(c, static_cast<uint32_t>(index_of.size()));
         if (inserted) {
           const auto p = mesh.point(vh);
+          if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+            throw fail("vertex " + std::to_string(vh.idx()) + " has a non-finite position");
+          for (size_t t = 0; t < n_targets; ++t) {
+            const MorphDeltas& d = mesh.property(h_delta, vh);
+            const Eigen::Vector3f x = t < d.size() ? d[t] : Eigen::Vector3f::Zero();
+            deltas[t].insert(deltas[t].end(), {x.x(), x.y(), x.z()});
+          }
           for (int k = 0; k < 3; ++k) {
             const float f = static_cast<float>(p[k]);
             pos.push_back(f);
@@ -263,9 +288,26 @@ void export_gltf(const SkinnedMesh& mesh, const std::string& path) {
       prim.attributes["WEIGHTS" + suffix] =
           buf.add(ws, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, nv, TINYGLTF_TARGET_ARRAY_BUFFER);
     }
+    for (size_t t = 0; t < n_targets; ++t) {
+      std::vector<double> dmn(3, HUGE_VAL), dmx(3, -HUGE_VAL);  // the spec requires bounds on POSITION
+      for (size_t i = 0; i < deltas[t].size(); ++i) {
+        dmn[i % 3] = std::min<double>(dmn[i % 3], deltas[t][i]);
+        dmx[i % 3] = std::max<double>(dmx[i % 3], deltas[t][i]);
+      }
+      prim.targets.push_back({{"POSITION", buf.add(deltas[t], TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, nv,
+                                                   TINYGLTF_TARGET_ARRAY_BUFFER, dmn, dmx)}});
+    }
     prim.indices = buf.add(indices, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, indices.size(),
                            TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
     gmesh.primitives.push_back(prim);
+  }
+  if (n_targets > 0) {
+    gmesh.weights.assign(n_targets, 0.0);
+    tinygltf::Value::Array names;
+    for (const MorphTarget& t : morph_targets(mesh)) names.emplace_back(t.name);
+    tinygltf::Value::Object extras;
+    extras["targetNames"] = tinygltf::Value(names);  // the de-facto convention viewers and DCC tools read
+    gmesh.extras = tinygltf::Value(extras);
   }
   model.meshes.push_back(gmesh);
 
@@ -308,6 +350,30 @@ void export_gltf(const SkinnedMesh& mesh, const std::string& path) {
       add_sampler(ch.translation_times, tr, TINYGLTF_TYPE_VEC3, ch.joint, "translation");
       add_sampler(ch.rotation_times, ro, TINYGLTF_TYPE_VEC4, ch.joint, "rotation");
       add_sampler(ch.scale_times, sc, TINYGLTF_TYPE_VEC3, ch.joint, "scale");
+    }
+    if (n_targets > 0 && !clip.morph_channels.empty()) {
+      // glTF animates all of a mesh's weights in one channel: sample every target at the union of the keys.
+      std::vector<double> times;
+      for (const MorphChannel& mc : clip.morph_channels) times.insert(times.end(), mc.times.begin(), mc.times.end());
+      std::sort(times.begin(), times.end());
+      times.erase(std::unique(times.begin(), times.end()), times.end());
+      std::vector<float> w;
+      for (double t : times) {
+        std::vector<double> at = sample_morph_weights(clip, t);
+        at.resize(n_targets, 0.0);
+        w.insert(w.end(), at.begin(), at.end());
+      }
+      std::vector<float> tf(times.begin(), times.end());
+      tinygltf::AnimationSampler s;
+      s.input = buf.add(tf, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, tf.size(), 0, {tf.front()}, {tf.back()});
+      s.output = buf.add(w, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, w.size(), 0);
+      s.interpolation = "LINEAR";
+      anim.samplers.push_back(s);
+      tinygltf::AnimationChannel ch;
+      ch.sampler = static_cast<int>(anim.samplers.size()) - 1;
+      ch.target_node = n_joints;  // the mesh node
+      ch.target_path = "weights";
+      anim.channels.push_back(ch);
     }
     if (!anim.channels.empty()) model.animations.push_back(anim);
   }

@@ -1,5 +1,8 @@
 #include "OpenMeshSkinned/IO/Import.hh"
 
+#include "OpenMeshSkinned/IO/Textures.hh"
+#include "OpenMeshSkinned/Skin/Morph.hh"
+
 #include "OpenMeshSkinned/Skin/SkinProperties.hh"
 #include "OpenMeshSkinned/Skin/Validate.hh"
 
@@ -33,8 +36,9 @@ Eigen::Matrix4d to_eigen(const aiMatrix4x4& m) {
 struct WeldKey {
   double p[3];
   Influences inf;
+  MorphDeltas deltas;
   bool operator==(const WeldKey& o) const {
-    return std::memcmp(p, o.p, sizeof p) == 0 && inf == o.inf;
+    return std::memcmp(p, o.p, sizeof p) == 0 && inf == o.inf && deltas == o.deltas;
   }
 };
 struct WeldHash {
@@ -49,6 +53,7 @@ struct WeldHash {
       mix(&jw.joint, sizeof jw.joint);
       mix(&jw.weight, sizeof jw.weight);
     }
+    for (const Eigen::Vector3f& d : k.deltas) mix(d.data(), sizeof(float) * 3);
     return h;
   }
 };
@@ -72,7 +77,8 @@ struct SceneNodes {
   }
 };
 
-Material read_material(const aiMaterial* m) {
+Material read_material(const aiScene* scene, const aiMaterial* m, const std::string& source_dir,
+                       std::vector<std::string>& warnings) {
   Material out;
   aiString name;
   if (m->Get(AI_MATKEY_NAME, name) == AI_SUCCESS) out.name = name.C_Str();
@@ -84,19 +90,59 @@ Material read_material(const aiMaterial* m) {
     out.base_color[3] = c.a;
   }
   aiString tex;
-  if (m->GetTexture(aiTextureType_BASE_COLOR, 0, &tex) == AI_SUCCESS ||
-      m->GetTexture(aiTextureType_DIFFUSE, 0, &tex) == AI_SUCCESS) {
-    // "*N" names a texture embedded in the source; it has no file to point at.
-    if (tex.length > 0 && tex.C_Str()[0] != '*') out.base_color_texture = tex.C_Str();
+  if ((m->GetTexture(aiTextureType_BASE_COLOR, 0, &tex) != AI_SUCCESS &&
+       m->GetTexture(aiTextureType_DIFFUSE, 0, &tex) != AI_SUCCESS) ||
+      tex.length == 0)
+    return out;
+  out.base_color_texture = tex.C_Str();
+  std::string problem;
+  bool ok = false;
+  // Embedded ("*N", or a file name FBX and GLB files carry inside themselves) before files beside the source.
+  if (const aiTexture* et = scene->GetEmbeddedTexture(tex.C_Str())) {
+    const std::string name = et->mFilename.length ? et->mFilename.C_Str() : out.base_color_texture;
+    if (et->mHeight == 0) {
+      const auto* b = reinterpret_cast<const unsigned char*>(et->pcData);
+      ok = encode_for_gltf(std::vector<unsigned char>(b, b + et->mWidth), name, out.base_color_image, problem);
+    } else {
+      std::vector<unsigned char> rgba(size_t(et->mWidth) * et->mHeight * 4);
+      for (size_t i = 0; i < size_t(et->mWidth) * et->mHeight; ++i) {
+        const aiTexel& t = et->pcData[i];
+        rgba[4 * i] = t.r, rgba[4 * i + 1] = t.g, rgba[4 * i + 2] = t.b, rgba[4 * i + 3] = t.a;
+      }
+      ok = encode_rgba_png(rgba.data(), et->mWidth, et->mHeight, name, out.base_color_image);
+      if (!ok) problem = "could not be encoded as PNG";
+    }
+  } else {
+    ok = read_texture_file(out.base_color_texture, source_dir, out.base_color_image, problem);
+  }
+  if (!ok) {
+    out.base_color_image = {};
+    warnings.push_back("texture \"" + out.base_color_texture + "\" of material \"" + out.name + "\" " + problem +
+                       ": the material is kept without it");
   }
   return out;
+}
+
+// A new vertex with \p vh's position, skin and morph offsets. (Copies first: add_vertex may reallocate
+// the arrays a reference into them would point at.)
+SkinnedMesh::VertexHandle copy_vertex(SkinnedMesh& mesh, SkinnedMesh::VertexHandle vh) {
+  const auto h_inf = influences_handle(mesh);
+  const SkinnedMesh::Point p = mesh.point(vh);
+  const Influences inf = mesh.property(h_inf, vh);
+  const auto copy = mesh.add_vertex(p);
+  mesh.property(h_inf, copy) = inf;
+  OpenMesh::VPropHandleT<MorphDeltas> hd;
+  if (morph_deltas_handle(mesh, hd)) {
+    MorphDeltas d = mesh.property(hd, vh);
+    mesh.property(hd, copy) = std::move(d);
+  }
+  return copy;
 }
 
 // A vertex where several face fans meet (OpenMesh accepts it, but its circulators see one fan only and
 // the decimater would treat it as a boundary) gets one copy per extra fan, as OpenMesh's readers do for
 // complex edges. Returns the number of copies.
 size_t split_nonmanifold_vertices(SkinnedMesh& mesh, OpenMesh::FPropHandleT<int> h_fmat) {
-  const auto h_inf = influences_handle(mesh);
   size_t copies = 0;
   std::vector<std::vector<SkinnedMesh::FaceHandle>> faces_of(mesh.n_vertices());
   for (auto fh : mesh.faces())
@@ -126,8 +172,7 @@ size_t split_nonmanifold_vertices(SkinnedMesh& mesh, OpenMesh::FPropHandleT<int>
     fans.erase(std::remove_if(fans.begin(), fans.end(), [](const auto& f) { return f.empty(); }), fans.end());
     for (size_t fi = 1; fi < fans.size(); ++fi) {
     const std::vector<SkinnedMesh::FaceHandle>& others = fans[fi];
-    const auto copy = mesh.add_vertex(mesh.point(vh));
-    mesh.property(h_inf, copy) = mesh.property(h_inf, vh);
+    const auto copy = copy_vertex(mesh, vh);
     ++copies;
     for (auto fh : others) {
       std::vector<Corner> corners;
@@ -140,9 +185,7 @@ size_t split_nonmanifold_vertices(SkinnedMesh& mesh, OpenMesh::FPropHandleT<int>
       auto nf = mesh.add_face(corners[0].v, corners[1].v, corners[2].v);
       if (!nf.is_valid()) {
         for (Corner& c : corners) {
-          const auto own = mesh.add_vertex(mesh.point(c.v));
-          mesh.property(h_inf, own) = mesh.property(h_inf, c.v);
-          c.v = own;
+          c.v = copy_vertex(mesh, c.v);
           ++copies;
         }
         nf = mesh.add_face(corners[0].v, corners[1].v, corners[2].v);
@@ -187,6 +230,7 @@ ImportReport import_skinned(const std::string& path, SkinnedMesh& mesh, const Im
   if (!scene->mRootNode || scene->mNumMeshes == 0) throw fail("contains no mesh");
 
   const SceneNodes sn(scene->mRootNode);
+  const std::string source_dir = fs::absolute(fs::path(path)).parent_path().string();
   ImportReport rep;
 
   // Mesh instances: (node, mesh index). A mesh used by several nodes is instanced several times.
@@ -203,26 +247,22 @@ ImportReport import_skinned(const std::string& path, SkinnedMesh& mesh, const Im
   if (instances.empty()) throw fail("contains no triangle mesh");
 
   // Which scene nodes become joints: every bone, every node carrying an unskinned mesh, and their ancestors
-  // (ancestors move the bones when animated).
+  // (ancestors move the bones when animated, and a rotated, scaled scene root is part of every pose).
   bool any_bones = false;
   std::vector<char> needed(sn.nodes.size(), 0);
   auto need = [&](int n) {
     for (; n >= 0 && !needed[n]; n = sn.parent[n]) needed[n] = 1;
   };
+  auto bone_node = [&](const aiBone* b) {
+    auto it = sn.by_name.find(b->mName.C_Str());
+    if (it == sn.by_name.end()) throw fail(std::string("bone \"") + b->mName.C_Str() + "\" has no node in the scene");
+    return it->second;
+  };
   for (const Instance& in : instances) {
     const aiMesh* am = scene->mMeshes[in.mesh];
-    if (am->mNumBones == 0) {
-      need(in.node);
-      continue;
-    }
-    any_bones = true;
-    need(in.node);  // target for vertices no bone touches
-    for (unsigned b = 0; b < am->mNumBones; ++b) {
-      auto it = sn.by_name.find(am->mBones[b]->mName.C_Str());
-      if (it == sn.by_name.end())
-        throw fail(std::string("bone \"") + am->mBones[b]->mName.C_Str() + "\" has no node in the scene");
-      need(it->second);
-    }
+    need(in.node);  // an unskinned mesh moves with it; a skinned one binds unweighted vertices to it
+    any_bones |= am->mNumBones > 0;
+    for (unsigned b = 0; b < am->mNumBones; ++b) need(bone_node(am->mBones[b]));
   }
   rep.rigid = !any_bones;
   if (rep.rigid) rep.warnings.push_back("no skin in the file: every mesh is bound rigidly to its node");
@@ -232,34 +272,65 @@ ImportReport import_skinned(const std::string& path, SkinnedMesh& mesh, const Im
   const auto h_inf = add_skin(mesh);
   const auto h_fmat = face_material_handle(mesh);
 
+  // One joint per needed node, bound where the node rests (inverse bind = its rest world matrix inverted).
+  // A skin whose inverse bind for a node differs from the one already in use (several skins bound in
+  // different poses or spaces) gets a twin joint: same parent, same transform, same animation, own bind.
   Skeleton& skel = skeleton(mesh);
-  std::vector<int> joint_of_node(sn.nodes.size(), -1);
+  std::vector<std::vector<int>> joints_of_node(sn.nodes.size());
+  std::vector<char> claimed;
   for (size_t i = 0; i < sn.nodes.size(); ++i) {
     if (!needed[i]) continue;
     Joint j;
     j.name = sn.nodes[i]->mName.C_Str();
-    j.parent = sn.parent[i] < 0 ? -1 : joint_of_node[sn.parent[i]];
+    j.parent = sn.parent[i] < 0 ? -1 : joints_of_node[sn.parent[i]].front();
     j.rest_local = to_eigen(sn.nodes[i]->mTransformation);
     j.inverse_bind = sn.global[i].inverse();
-    joint_of_node[i] = skel.size();
+    joints_of_node[i].push_back(skel.size());
     skel.joints.push_back(j);
+    claimed.push_back(0);
   }
-  // Bones' inverse binds come from the file: the offset matrix maps mesh space to bone space, and our
-  // vertices live in root space (mesh space moved by the mesh node's global transform).
-  std::vector<char> bind_set(skel.joints.size(), 0);
-  for (const Instance& in : instances) {
-    const aiMesh* am = scene->mMeshes[in.mesh];
-    const Eigen::Matrix4d mesh_to_root_inv = sn.global[in.node].inverse();
-    for (unsigned b = 0; b < am->mNumBones; ++b) {
-      const int j = joint_of_node[sn.by_name.at(am->mBones[b]->mName.C_Str())];
-      if (bind_set[j]) continue;
-      skel.joints[j].inverse_bind = to_eigen(am->mBones[b]->mOffsetMatrix) * mesh_to_root_inv;
-      bind_set[j] = 1;
+  auto joint_for = [&](int node, const Eigen::Matrix4d& ib) {
+    const double tol = 1e-5 * std::max(1.0, ib.cwiseAbs().maxCoeff());
+    for (int j : joints_of_node[node])
+      if ((skel.joints[j].inverse_bind - ib).cwiseAbs().maxCoeff() <= tol) return claimed[j] = 1, j;
+    const int first = joints_of_node[node].front();
+    if (!claimed[first]) {
+      skel.joints[first].inverse_bind = ib;
+      claimed[first] = 1;
+      return first;
+    }
+    Joint twin = skel.joints[first];
+    twin.inverse_bind = ib;
+    joints_of_node[node].push_back(skel.size());
+    skel.joints.push_back(twin);
+    claimed.push_back(1);
+    ++rep.twin_joints;
+    return skel.size() - 1;
+  };
+
+  for (unsigned m = 0; m < scene->mNumMaterials; ++m)
+    materials(mesh).push_back(read_material(scene, scene->mMaterials[m], source_dir, rep.warnings));
+
+  // Morph targets of every mesh instance, numbered one after the other.
+  std::vector<size_t> target_base(instances.size(), 0);
+  size_t n_targets = 0;
+  for (size_t ii = 0; ii < instances.size(); ++ii) {
+    const aiMesh* am = scene->mMeshes[instances[ii].mesh];
+    target_base[ii] = n_targets;
+    for (unsigned t = 0; t < am->mNumAnimMeshes; ++t) {
+      const aiAnimMesh* an = am->mAnimMeshes[t];
+      if (an->mNumVertices != am->mNumVertices)
+        throw fail("morph target " + std::to_string(t) + " of mesh \"" + am->mName.C_Str() + "\" has " +
+                   std::to_string(an->mNumVertices) + " vertices, the mesh " + std::to_string(am->mNumVertices));
+      MorphTarget mt;
+      mt.name = an->mName.length ? an->mName.C_Str() : std::string(am->mName.C_Str()) + "_target" + std::to_string(t);
+      morph_targets(mesh).push_back(mt);
+      ++n_targets;
     }
   }
-  rep.joints = skel.joints.size();
-
-  for (unsigned m = 0; m < scene->mNumMaterials; ++m) materials(mesh).push_back(read_material(scene->mMaterials[m]));
+  OpenMesh::VPropHandleT<MorphDeltas> h_delta;
+  if (n_targets > 0) h_delta = add_morph_targets(mesh);
+  rep.morph_targets = n_targets;
 
   // OpenMesh prints a line per refused face; we handle and count those ourselves.
   struct QuietOmerr {
@@ -268,20 +339,39 @@ ImportReport import_skinned(const std::string& path, SkinnedMesh& mesh, const Im
   } quiet;
   std::unordered_map<WeldKey, SkinnedMesh::VertexHandle, WeldHash> weld;
   std::vector<SkinnedMesh::VertexHandle> corner_vh;
-  for (const Instance& in : instances) {
+  for (size_t ii = 0; ii < instances.size(); ++ii) {
+    const Instance& in = instances[ii];
     const aiMesh* am = scene->mMeshes[in.mesh];
     ++rep.source_meshes;
     rep.source_vertices += am->mNumVertices;
-    const Eigen::Matrix4d g = sn.global[in.node];
-    const Eigen::Matrix3d normal_matrix = g.topLeftCorner<3, 3>().inverse().transpose();
-    const int node_joint = joint_of_node[in.node];
+
+    // The mesh's bind space: where a viewer shows it in the rest pose. Unskinned, that is its node's
+    // world matrix; skinned, the glTF rule gives sum_k w_k J_k O_k v, so take J_k O_k of the bone with
+    // the most weight (for a well-formed skin every bone gives the same matrix). Vertices are stored
+    // there and each bone's inverse bind becomes O_k B^-1, so posing J_k(t) O_k B^-1 (B v) is exact
+    // whichever bone was chosen.
+    Eigen::Matrix4d B = sn.global[in.node];
+    double heaviest = -1.0;
+    for (unsigned b = 0; b < am->mNumBones; ++b) {
+      double total = 0.0;
+      for (unsigned w = 0; w < am->mBones[b]->mNumWeights; ++w) total += am->mBones[b]->mWeights[w].mWeight;
+      if (total > heaviest) {
+        heaviest = total;
+        B = sn.global[bone_node(am->mBones[b])] * to_eigen(am->mBones[b]->mOffsetMatrix);
+      }
+    }
+    if (!B.allFinite() || std::abs(B.topLeftCorner<3, 3>().determinant()) < 1e-300)
+      throw fail(std::string("mesh \"") + am->mName.C_Str() + "\" has a singular or non-finite bind transform");
+    const Eigen::Matrix4d B_inv = B.inverse();
+    const Eigen::Matrix3d normal_matrix = B.topLeftCorner<3, 3>().inverse().transpose();
+    const int node_joint = joint_for(in.node, sn.global[in.node].inverse());
 
     std::vector<Influences> inf(am->mNumVertices);
     std::vector<char> touched(am->mNumVertices, 0);
     std::vector<size_t> over_capacity;
     for (unsigned b = 0; b < am->mNumBones; ++b) {
       const aiBone* bone = am->mBones[b];
-      const int j = joint_of_node[sn.by_name.at(bone->mName.C_Str())];
+      const int j = joint_for(bone_node(bone), to_eigen(bone->mOffsetMatrix) * B_inv);
       for (unsigned w = 0; w < bone->mNumWeights; ++w) {
         const aiVertexWeight& vw = bone->mWeights[w];
         if (vw.mVertexId >= am->mNumVertices)
@@ -333,13 +423,27 @@ ImportReport import_skinned(const std::string& path, SkinnedMesh& mesh, const Im
         vi.sort();
       }
       const aiVector3D& p = am->mVertices[v];
-      const Eigen::Vector3d q = (g * Eigen::Vector4d(p.x, p.y, p.z, 1.0)).head<3>();
-      WeldKey key{{q.x(), q.y(), q.z()}, vi};
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+        throw fail("vertex " + std::to_string(v) + " of mesh \"" + am->mName.C_Str() + "\" has a non-finite position");
+      const Eigen::Vector3d q = (B * Eigen::Vector4d(p.x, p.y, p.z, 1.0)).head<3>();
+      WeldKey key{{q.x(), q.y(), q.z()}, vi, {}};
+      if (n_targets > 0) {
+        key.deltas.assign(n_targets, Eigen::Vector3f::Zero());
+        for (unsigned t = 0; t < am->mNumAnimMeshes; ++t) {
+          const aiAnimMesh* an = am->mAnimMeshes[t];
+          if (!an->mVertices) continue;  // a target of normals only: no offset
+          const aiVector3D d = an->mVertices[v] - p;  // assimp stores the target's positions, not offsets
+          const Eigen::Vector3d bd = B.topLeftCorner<3, 3>() * Eigen::Vector3d(d.x, d.y, d.z);
+          if (!bd.allFinite()) throw fail("morph target " + std::to_string(t) + " has a non-finite position at vertex " + std::to_string(v));
+          key.deltas[target_base[ii] + t] = bd.cast<float>();
+        }
+      }
       auto it = weld.find(key);
       if (it == weld.end()) {
         const auto vh = mesh.add_vertex(SkinnedMesh::Point(q.x(), q.y(), q.z()));
         mesh.property(h_inf, vh) = vi;
-        it = weld.emplace(key, vh).first;
+        if (n_targets > 0) mesh.property(h_delta, vh) = key.deltas;
+        it = weld.emplace(std::move(key), vh).first;
       }
       vmap[v] = it->second;
     }
@@ -358,11 +462,7 @@ ImportReport import_skinned(const std::string& path, SkinnedMesh& mesh, const Im
       if (!fh.is_valid()) {
         // A complex edge (more than two faces) or vertex: OpenMesh cannot hold it. Like OpenMesh's own
         // readers, give this face private copies of its vertices so that no face is dropped.
-        for (auto& vh : corner_vh) {
-          const auto copy = mesh.add_vertex(mesh.point(vh));
-          mesh.property(h_inf, copy) = mesh.property(h_inf, vh);
-          vh = copy;
-        }
+        for (auto& vh : corner_vh) vh = copy_vertex(mesh, vh);
         rep.nonmanifold_vertices_added += 3;
         fh = mesh.add_face(corner_vh);
         if (!fh.is_valid()) throw fail("face " + std::to_string(f) + " cannot be added even with copied vertices");
@@ -373,16 +473,22 @@ ImportReport import_skinned(const std::string& path, SkinnedMesh& mesh, const Im
         for (int c = 0; c < 3; ++c) {
           if (corner_vh[c] != to) continue;
           const unsigned src = af.mIndices[c];
+          // OpenMesh leaves attributes uninitialised: a mesh without normals or UVs gets zeros (a zero
+          // normal is recomputed from the faces on export; all-zero UVs are not written).
+          Eigen::Vector3d en = Eigen::Vector3d::Zero();
           if (has_n) {
             const aiVector3D& n = am->mNormals[src];
-            Eigen::Vector3d en = normal_matrix * Eigen::Vector3d(n.x, n.y, n.z);
-            if (en.norm() > 0.0) en.normalize();
-            mesh.set_normal(heh, SkinnedMesh::Normal(en.x(), en.y(), en.z()));
+            en = normal_matrix * Eigen::Vector3d(n.x, n.y, n.z);
+            if (!en.allFinite() || en.norm() == 0.0) en.setZero();
+            else en.normalize();
           }
+          mesh.set_normal(heh, SkinnedMesh::Normal(en.x(), en.y(), en.z()));
+          SkinnedMesh::TexCoord2D uv(0, 0);
           if (has_uv) {
             const aiVector3D& t = am->mTextureCoords[0][src];
-            mesh.set_texcoord2D(heh, SkinnedMesh::TexCoord2D(t.x, t.y));
+            if (std::isfinite(t.x) && std::isfinite(t.y)) uv = SkinnedMesh::TexCoord2D(t.x, t.y);
           }
+          mesh.set_texcoord2D(heh, uv);
         }
       }
       ++rep.faces;
@@ -402,7 +508,11 @@ ImportReport import_skinned(const std::string& path, SkinnedMesh& mesh, const Im
     rep.warnings.push_back(os.str());
   }
   if (rep.degenerate_faces_skipped > 0)
-    rep.warnings.push_back(std::to_string(rep.degenerate_faces_skipped) + " degenerate triangles skipped");
+    rep.warnings.push_back(std::to_string(rep.degenerate_faces_skipped) +
+                           " degenerate triangles (a repeated vertex) skipped");
+  if (rep.twin_joints > 0)
+    rep.warnings.push_back(std::to_string(rep.twin_joints) +
+                           " joints are bound differently by different skins: each such skin got twin joints");
 
   rep.nonmanifold_vertices_added += split_nonmanifold_vertices(mesh, h_fmat);
   if (rep.nonmanifold_vertices_added > 0)
@@ -415,6 +525,15 @@ ImportReport import_skinned(const std::string& path, SkinnedMesh& mesh, const Im
   mesh.garbage_collection();
   rep.welded_vertices = mesh.n_vertices();
   mesh.update_face_normals();
+  for (auto fh : mesh.faces()) {
+    const auto n = mesh.normal(fh);
+    if (!std::isfinite(n[0]) || !std::isfinite(n[1]) || !std::isfinite(n[2])) mesh.set_normal(fh, SkinnedMesh::Normal(0, 0, 0));
+  }
+  rep.zero_area_faces = 0;
+  for (auto fh : mesh.faces()) rep.zero_area_faces += mesh.calc_face_area(fh) == 0.0;
+  if (rep.zero_area_faces > 0)
+    rep.warnings.push_back(std::to_string(rep.zero_area_faces) +
+                           " triangles have zero area (kept; the decimater removes them first)");
 
   for (unsigned a = 0; a < scene->mNumAnimations; ++a) {
     const aiAnimation* an = scene->mAnimations[a];
@@ -425,9 +544,8 @@ ImportReport import_skinned(const std::string& path, SkinnedMesh& mesh, const Im
     for (unsigned c = 0; c < an->mNumChannels; ++c) {
       const aiNodeAnim* na = an->mChannels[c];
       auto it = sn.by_name.find(na->mNodeName.C_Str());
-      if (it == sn.by_name.end() || joint_of_node[it->second] < 0) continue;  // moves nothing we keep
+      if (it == sn.by_name.end() || joints_of_node[it->second].empty()) continue;  // moves nothing we keep
       Channel ch;
-      ch.joint = joint_of_node[it->second];
       for (unsigned k = 0; k < na->mNumPositionKeys; ++k) {
         const auto& key = na->mPositionKeys[k];
         ch.translation_times.push_back(key.mTime / tps);
@@ -446,7 +564,39 @@ ImportReport import_skinned(const std::string& path, SkinnedMesh& mesh, const Im
       for (double t : ch.translation_times) clip.duration = std::max(clip.duration, t);
       for (double t : ch.rotation_times) clip.duration = std::max(clip.duration, t);
       for (double t : ch.scale_times) clip.duration = std::max(clip.duration, t);
-      clip.channels.push_back(std::move(ch));
+      for (int j : joints_of_node[it->second]) {  // twins move with their node
+        ch.joint = j;
+        clip.channels.push_back(ch);
+      }
+    }
+    // Morph weight channels are named after the node whose mesh they animate.
+    for (unsigned c = 0; c < an->mNumMorphMeshChannels; ++c) {
+      const aiMeshMorphAnim* ma = an->mMorphMeshChannels[c];
+      std::string node_name = ma->mName.C_Str();
+      if (node_name.find('*') != std::string::npos) node_name = node_name.substr(0, node_name.find('*'));
+      bool used = false;
+      for (size_t ii = 0; ii < instances.size(); ++ii) {
+        if (sn.nodes[instances[ii].node]->mName.C_Str() != node_name) continue;
+        const unsigned nt = scene->mMeshes[instances[ii].mesh]->mNumAnimMeshes;
+        for (unsigned t = 0; t < nt; ++t) {
+          MorphChannel mc;
+          mc.target = static_cast<int>(target_base[ii] + t);
+          for (unsigned k = 0; k < ma->mNumKeys; ++k) {
+            const aiMeshMorphKey& key = ma->mKeys[k];
+            double w = 0.0;
+            for (unsigned j = 0; j < key.mNumValuesAndWeights; ++j)
+              if (key.mValues[j] == t) w = key.mWeights[j];
+            mc.times.push_back(key.mTime / tps);
+            mc.weights.push_back(w);
+            clip.duration = std::max(clip.duration, key.mTime / tps);
+          }
+          if (!mc.times.empty()) clip.morph_channels.push_back(std::move(mc));
+        }
+        used = true;
+      }
+      if (!used)
+        rep.warnings.push_back("clip \"" + clip.name + "\": morph channel \"" + node_name +
+                               "\" names no mesh node: not kept");
     }
     clips(mesh).push_back(std::move(clip));
   }

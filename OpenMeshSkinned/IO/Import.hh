@@ -40,6 +40,9 @@ struct ImportReport {
   size_t truncated_vertices = 0;         ///< vertices with more than Influences::kCapacity bones
   size_t renormalized_vertices = 0;     ///< vertices whose weight sum was not 1 (rescaled)
   double min_weight_sum = 1.0, max_weight_sum = 1.0;  ///< range of the sums as found in the file
+  size_t zero_area_faces = 0;            ///< triangles of zero area kept (three distinct, collinear vertices)
+  size_t twin_joints = 0;  ///< joints duplicated because two skins bind the same node differently
+  size_t morph_targets = 0;
   size_t joints = 0;
   size_t clips = 0;
   bool rigid = false;  ///< the file had no skin at all; every mesh moves with its node
@@ -48,7 +51,14 @@ struct ImportReport {
 
 /** Imports \p path into \p mesh (which is cleared first). Split vertices are welded by position and
  *  identical skin; normals and UVs become per-halfedge attributes so seams survive; each face keeps its
- *  material ("f:material"). The example poses are set to the bind pose alone.
+ *  material ("f:material") and each material its base-colour image (embedded, or read from beside the
+ *  file). Morph targets become "v:morph_deltas", their weight animations clip channels.
+ *
+ *  Posing follows the glTF 2.0 rule whatever the format: a skinned vertex goes to sum_k w_k J_k O_k v,
+ *  with J_k the joint node's world matrix (every ancestor, the scene root included) and O_k assimp's
+ *  offset matrix; the skinned mesh's own node transform plays no part. Every mesh is stored in the space
+ *  where it rests on screen, so the identity pose shows the character as a viewer does; a mesh without a
+ *  skin is bound rigidly to its node (which becomes a joint). The example poses are set to the bind pose.
  *  Throws IOError (missing, empty, unreadable or invalid file, or an unusable skin). */
 ImportReport import_skinned(const std::string& path, SkinnedMesh& mesh, const ImportOptions& opt = {});
 

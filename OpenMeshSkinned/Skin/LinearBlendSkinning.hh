@@ -3,6 +3,7 @@
  *  Linear blend skinning: p = sum_k w_k M_k v, for one vertex or the whole mesh.
  */
 
+#include "OpenMeshSkinned/Skin/Morph.hh"
 #include "OpenMeshSkinned/Skin/SkinProperties.hh"
 
 #include <Eigen/Core>
@@ -31,14 +32,22 @@ Eigen::Vector3d to_eigen(const Point& p) {
   return Eigen::Vector3d(p[0], p[1], p[2]);
 }
 
-/// Posed positions of all vertices (indexed by vertex index; deleted vertices get their rest position).
+/// Posed positions of all vertices (indexed by vertex index; deleted vertices get their rest position):
+/// the pose's morph offsets first, then linear blend skinning, as glTF poses a vertex.
 template <typename Mesh>
 std::vector<Eigen::Vector3d> skin_positions(const Mesh& mesh, const Pose& pose) {
   const auto h = influences_handle(mesh);
+  OpenMesh::VPropHandleT<MorphDeltas> hd;
+  const bool morph = !pose.morph_weights.empty() && morph_deltas_handle(mesh, hd);
   std::vector<Eigen::Vector3d> out(mesh.n_vertices());
   for (auto vh : mesh.all_vertices()) {
-    const Eigen::Vector3d rest = to_eigen(mesh.point(vh));
-    out[vh.idx()] = mesh.status(vh).deleted() ? rest : skin_point(rest, mesh.property(h, vh), pose);
+    Eigen::Vector3d rest = to_eigen(mesh.point(vh));
+    if (mesh.status(vh).deleted()) {
+      out[vh.idx()] = rest;
+      continue;
+    }
+    if (morph) rest = apply_morph(rest, mesh.property(hd, vh), pose.morph_weights);
+    out[vh.idx()] = skin_point(rest, mesh.property(h, vh), pose);
   }
   return out;
 }

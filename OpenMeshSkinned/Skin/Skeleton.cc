@@ -112,10 +112,25 @@ std::vector<Eigen::Matrix4d> sample_locals(const Skeleton& skel, const Clip& cli
   return locals;
 }
 
+std::vector<double> sample_morph_weights(const Clip& clip, double time) {
+  std::vector<double> w;
+  const double t = std::clamp(time, 0.0, clip.duration);
+  for (const MorphChannel& ch : clip.morph_channels) {
+    if (ch.target < 0 || ch.times.empty()) continue;
+    if (static_cast<int>(w.size()) <= ch.target) w.resize(ch.target + 1, 0.0);
+    size_t i;
+    double u;
+    bracket(ch.times, t, i, u);
+    w[ch.target] = ch.weights.size() == 1 ? ch.weights[0] : (1.0 - u) * ch.weights[i] + u * ch.weights[i + 1];
+  }
+  return w;
+}
+
 Pose sample_pose(const Skeleton& skel, const Clip& clip, double time) {
   Pose p;
   p.label = clip.name + "@" + std::to_string(time) + "s";
   p.joint = skel.skinning(sample_locals(skel, clip, time));
+  p.morph_weights = sample_morph_weights(clip, time);
   return p;
 }
 

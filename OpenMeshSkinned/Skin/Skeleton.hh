@@ -49,32 +49,60 @@ struct Channel {
   std::vector<Eigen::Vector3d> scales;
 };
 
-/// An animation clip: keyframed channels; joints without a channel keep their rest transform.
+/// Keyframes of one morph target's weight (linear interpolation, as glTF's LINEAR). Times in seconds.
+struct MorphChannel {
+  int target = -1;  ///< index into the mesh's "m:morph_targets"
+  std::vector<double> times;
+  std::vector<double> weights;
+};
+
+/// An animation clip: keyframed channels; joints without a channel keep their rest transform, morph
+/// targets without a channel keep weight 0.
 struct Clip {
   std::string name;
   double duration = 0.0;  ///< seconds; channels' keys lie in [0, duration]
   std::vector<Channel> channels;
+  std::vector<MorphChannel> morph_channels;
 };
 
-/// One example pose: a skinning matrix per joint, relative to the bind pose.
+/// One example pose: a skinning matrix per joint, relative to the bind pose, and the morph targets'
+/// weights (empty: all 0). Morph offsets are added to the rest position before skinning, as in glTF.
 struct Pose {
   std::string label;  ///< e.g. "walk@0.25s"
   std::vector<Affine3> joint;
+  std::vector<double> morph_weights;
 
   /// The bind pose of a skeleton with \p n joints (all identities).
   static Pose identity(int n, std::string label = "bind");
+};
+
+/// A morph target (blend shape): its per-vertex offsets live in "v:morph_deltas".
+struct MorphTarget {
+  std::string name;
+};
+
+/// An image a material uses, carried as encoded bytes so that every output can embed it.
+struct Image {
+  std::string name;                ///< where it came from (a file name, or the embedded texture's name)
+  std::string mime_type;           ///< "image/png" or "image/jpeg" (the two glTF 2.0 allows)
+  std::vector<unsigned char> data;  ///< the encoded file
 };
 
 /// A material as it came in, kept so that the exported LODs look like the input.
 struct Material {
   std::string name;
   double base_color[4] = {1.0, 1.0, 1.0, 1.0};
-  std::string base_color_texture;  ///< a path or URI as found in the source; empty when none
+  std::string base_color_texture;  ///< the path or name as stored in the source; empty when none
+  Image base_color_image;          ///< the texture's bytes; empty when it could not be found or read
 };
 
 /// Local transforms of every joint of \p skel for \p clip at \p time (seconds, clamped into the clip):
 /// translations and scales are interpolated linearly, rotations by slerp.
 std::vector<Eigen::Matrix4d> sample_locals(const Skeleton& skel, const Clip& clip, double time);
+
+/// Weights of the morph targets \p clip animates at \p time (clamped into the clip), indexed by target
+/// (targets without a channel: 0). Empty when the clip animates no morph target.
+std::vector<double> sample_morph_weights(const Clip& clip, double time);
 
 /// The example pose of \p clip at \p time.
 Pose sample_pose(const Skeleton& skel, const Clip& clip, double time);

@@ -16,6 +16,8 @@
  *  modules find each other's settings and work alone or in any combination.
  */
 
+#include "OpenMeshSkinned/Decimater/MorphTransferT.hh"
+#include "OpenMeshSkinned/Mesh/ClosestPoint.hh"
 #include "OpenMeshSkinned/Skin/LinearBlendSkinning.hh"
 #include "OpenMeshSkinned/Skin/SkinProperties.hh"
 #include "OpenMeshSkinned/Solver/PoseQuadric.hh"
@@ -71,7 +73,7 @@ public:
   using EdgeHandle = typename Mesh::EdgeHandle;
   using CollapseInfo = OpenMesh::Decimater::CollapseInfoT<Mesh>;
 
-  explicit CollapseSolverT(Mesh& mesh) : mesh_(mesh) {}
+  explicit CollapseSolverT(Mesh& mesh) : mesh_(mesh), morph_(mesh) {}
 
   // ---- settings (written by the modules' setters) ----------------------------------------------------
 
@@ -272,6 +274,7 @@ public:
     ring_.clear();
     for (auto vh : mesh_.vv_range(ci.v0)) ring_.push_back(vh);  // what DecimaterT re-asks afterwards
     record_uv_sources(ci);
+    morph_.record(ci.v0, ci.v1);
     if (!placement_) return;
     pending_result_ = solve(ci);
     if (!fold_check_ || !pending_result_.valid || !flips(ci, pending_result_.position, pending_result_.weights, fold_cos_))
@@ -316,6 +319,7 @@ public:
     }
     // Moved or not, v1's corners that came from v0 carry v0's UVs: re-interpolate all of them.
     reassign_uvs(v1, to_eigen(mesh_.point(v1)));
+    morph_.apply(v1);
     ++stamp_[v1.idx()];
     ++stamp_[v0.idx()];
     // Moved or not, v1 now holds v0's faces: verdicts around it may be stale. (After the stamps: the
@@ -476,34 +480,6 @@ private:
       }
       if (best < HUGE_VAL) mesh_.set_texcoord2D(h, typename Mesh::TexCoord2D(uv.x(), uv.y()));
     }
-  }
-
-  // Squared distance from q to triangle t, and the barycentric coordinates of the closest point.
-  static double closest_barycentric(const Eigen::Vector3d (&t)[3], const Eigen::Vector3d& q, Eigen::Vector3d& bary) {
-    const Eigen::Vector3d e0 = t[1] - t[0], e1 = t[2] - t[0], d = q - t[0];
-    const double a = e0.dot(e0), b = e0.dot(e1), c = e1.dot(e1), det = a * c - b * b;
-    if (det > 1e-300 * (a * c + 1e-300)) {
-      const double u = (c * e0.dot(d) - b * e1.dot(d)) / det, v = (a * e1.dot(d) - b * e0.dot(d)) / det;
-      if (u >= 0.0 && v >= 0.0 && u + v <= 1.0) {
-        bary = Eigen::Vector3d(1.0 - u - v, u, v);
-        return (t[0] + u * e0 + v * e1 - q).squaredNorm();
-      }
-    }
-    // Outside (or degenerate): the closest point lies on an edge.
-    double best = HUGE_VAL;
-    for (int i = 0; i < 3; ++i) {
-      const Eigen::Vector3d &x = t[i], &y = t[(i + 1) % 3];
-      const double len2 = (y - x).squaredNorm();
-      const double s = len2 > 0.0 ? std::clamp((q - x).dot(y - x) / len2, 0.0, 1.0) : 0.0;
-      const double dist = (x + s * (y - x) - q).squaredNorm();
-      if (dist < best) {
-        best = dist;
-        bary.setZero();
-        bary[i] = 1.0 - s;
-        bary[(i + 1) % 3] = s;
-      }
-    }
-    return best;
   }
 
   void update_posed(VertexHandle v) {
@@ -727,6 +703,7 @@ private:
   double best_error_ = 0.0;
   std::vector<VertexHandle> ring_;
   std::vector<UvSource> uv_sources_;
+  MorphTransferT<Mesh> morph_;
   std::vector<char> in_chart_;
   bool uv_active_ = false;
   mutable std::vector<std::array<int, 3>> ring_faces_;

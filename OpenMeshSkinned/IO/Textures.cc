@@ -1,0 +1,91 @@
+#include "OpenMeshSkinned/IO/Textures.hh"
+
+// Private copies of stb's decoder and PNG writer: tinygltf's shared library may carry its own.
+#define STB_IMAGE_STATIC
+#define STB_IMAGE_IMPLEMENTATION
+#define STBI_NO_HDR
+#define STBI_FAILURE_USERMSG
+#include <stb/stb_image.h>
+#define STB_IMAGE_WRITE_STATIC
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#include <stb/stb_image_write.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+namespace OpenMeshSkinned {
+namespace {
+
+bool starts_with(const std::vector<unsigned char>& b, std::initializer_list<unsigned char> magic) {
+  return b.size() >= magic.size() && std::equal(magic.begin(), magic.end(), b.begin());
+}
+
+void append_bytes(void* context, void* data, int size) {
+  auto* out = static_cast<std::vector<unsigned char>*>(context);
+  const auto* p = static_cast<const unsigned char*>(data);
+  out->insert(out->end(), p, p + size);
+}
+
+}  // namespace
+
+bool encode_rgba_png(const unsigned char* rgba, int width, int height, const std::string& name, Image& out) {
+  out.name = name;
+  out.mime_type = "image/png";
+  out.data.clear();
+  return stbi_write_png_to_func(append_bytes, &out.data, width, height, 4, rgba, width * 4) != 0 && !out.data.empty();
+}
+
+bool encode_for_gltf(const std::vector<unsigned char>& bytes, const std::string& name, Image& out, std::string& problem) {
+  if (starts_with(bytes, {0x89, 'P', 'N', 'G'})) {
+    out = {name, "image/png", bytes};
+    return true;
+  }
+  if (starts_with(bytes, {0xFF, 0xD8, 0xFF})) {
+    out = {name, "image/jpeg", bytes};
+    return true;
+  }
+  int w = 0, h = 0, n = 0;
+  unsigned char* px = stbi_load_from_memory(bytes.data(), static_cast<int>(bytes.size()), &w, &h, &n, 4);
+  if (!px) {
+    problem = std::string("not an image format that can be read (") + stbi_failure_reason() + ")";
+    return false;
+  }
+  const bool ok = encode_rgba_png(px, w, h, name, out);
+  stbi_image_free(px);
+  if (!ok) problem = "could not be re-encoded as PNG";
+  return ok;
+}
+
+bool read_texture_file(const std::string& stored, const std::string& source_dir, Image& out, std::string& problem) {
+  namespace fs = std::filesystem;
+  std::string norm = stored;
+  std::replace(norm.begin(), norm.end(), '\\', '/');
+  std::vector<fs::path> candidates;
+  const fs::path as_stored(norm);
+  candidates.push_back(as_stored.is_absolute() ? as_stored : fs::path(source_dir) / as_stored);
+  // Windows paths ("C:/work/x.png") and paths from another machine: the file's name beside the source.
+  const std::string base = norm.substr(norm.find_last_of('/') + 1);
+  if (!base.empty()) candidates.push_back(fs::path(source_dir) / base);
+  for (const fs::path& p : candidates) {
+    std::error_code ec;
+    if (!fs::is_regular_file(p, ec)) continue;
+    std::ifstream in(p, std::ios::binary);
+    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (bytes.empty()) {
+      problem = p.string() + " is empty";
+      return false;
+    }
+    if (!encode_for_gltf(bytes, base, out, problem)) {
+      problem = p.string() + ": " + problem;
+      return false;
+    }
+    return true;
+  }
+  problem = "not found (looked for " + candidates.front().string() +
+            (candidates.size() > 1 ? " and " + candidates.back().string() : std::string()) + ")";
+  return false;
+}
+
+}  // namespace OpenMeshSkinned

@@ -1,0 +1,28 @@
+#pragma once
+/** \file Textures.hh
+ *  Finding and reading the images a source file's materials name, so every LOD can carry them inside
+ *  itself. glTF 2.0 allows PNG and JPEG only: other formats (TGA, BMP, PSD, GIF, ...) are decoded and
+ *  re-encoded as PNG.
+ */
+
+#include "OpenMeshSkinned/Skin/Skeleton.hh"
+
+#include <string>
+#include <vector>
+
+namespace OpenMeshSkinned {
+
+/** Makes a glTF-ready image from an encoded file's bytes: PNG and JPEG are kept as they are, any other
+ *  format stb_image reads is re-encoded as PNG. Returns false and says why in \p problem otherwise. */
+bool encode_for_gltf(const std::vector<unsigned char>& bytes, const std::string& name, Image& out, std::string& problem);
+
+/** Makes a PNG from raw 8-bit RGBA texels (row-major, \p width x \p height). */
+bool encode_rgba_png(const unsigned char* rgba, int width, int height, const std::string& name, Image& out);
+
+/** Reads the image a material names as \p stored (as the source stored it: relative, absolute, with
+ *  Windows separators or a drive letter) for a source file in \p source_dir: the path as it is when it
+ *  exists (relative ones against \p source_dir), otherwise the file's base name in \p source_dir.
+ *  Returns false and says why in \p problem when no readable image is found. */
+bool read_texture_file(const std::string& stored, const std::string& source_dir, Image& out, std::string& problem);
+
+}  // namespace OpenMeshSkinned
