@@ -346,19 +346,30 @@ ImportReport import_skinned(const std::string& path, SkinnedMesh& mesh, const Im
     rep.source_vertices += am->mNumVertices;
 
     // The mesh's bind space: where a viewer shows it in the rest pose. Unskinned, that is its node's
-    // world matrix; skinned, the glTF rule gives sum_k w_k J_k O_k v, so take J_k O_k of the bone with
-    // the most weight (for a well-formed skin every bone gives the same matrix). Vertices are stored
-    // there and each bone's inverse bind becomes O_k B^-1, so posing J_k(t) O_k B^-1 (B v) is exact
-    // whichever bone was chosen.
+    // world matrix; skinned, the glTF rule gives sum_k w_k J_k O_k v, and for a well-formed skin every
+    // bone gives the same J_k O_k. Files whose rest pose is not their bind pose for some bones (FBX) give
+    // several: take the one that carries the most skin weight, which is also the one a round trip
+    // through our own export maps to identity. Vertices are stored there and each bone's inverse bind
+    // becomes O_k B^-1, so posing J_k(t) O_k B^-1 (B v) is exact whichever was chosen.
     Eigen::Matrix4d B = sn.global[in.node];
-    double heaviest = -1.0;
-    for (unsigned b = 0; b < am->mNumBones; ++b) {
-      double total = 0.0;
-      for (unsigned w = 0; w < am->mBones[b]->mNumWeights; ++w) total += am->mBones[b]->mWeights[w].mWeight;
-      if (total > heaviest) {
-        heaviest = total;
-        B = sn.global[bone_node(am->mBones[b])] * to_eigen(am->mBones[b]->mOffsetMatrix);
+    {
+      std::vector<std::pair<Eigen::Matrix4d, double>> spaces;  // candidate, weight agreeing with it
+      for (unsigned b = 0; b < am->mNumBones; ++b) {
+        const aiBone* bone = am->mBones[b];
+        const Eigen::Matrix4d c = sn.global[bone_node(bone)] * to_eigen(bone->mOffsetMatrix);
+        double total = 0.0;
+        for (unsigned w = 0; w < bone->mNumWeights; ++w) total += bone->mWeights[w].mWeight;
+        const double tol = 1e-4 * std::max(1.0, c.cwiseAbs().maxCoeff());
+        auto same = std::find_if(spaces.begin(), spaces.end(),
+                                 [&](const auto& s) { return (s.first - c).cwiseAbs().maxCoeff() <= tol; });
+        if (same == spaces.end())
+          spaces.emplace_back(c, total);
+        else
+          same->second += total;
       }
+      const auto best = std::max_element(spaces.begin(), spaces.end(),
+                                         [](const auto& x, const auto& y) { return x.second < y.second; });
+      if (best != spaces.end()) B = best->first;
     }
     if (!B.allFinite() || std::abs(B.topLeftCorner<3, 3>().determinant()) < 1e-300)
       throw fail(std::string("mesh \"") + am->mName.C_Str() + "\" has a singular or non-finite bind transform");
