@@ -213,8 +213,10 @@ void export_gltf(const SkinnedMesh& mesh, const std::string& path) {
   const bool has_n = mesh.has_halfedge_normals();
   const bool has_uv = [&] {
     if (!mesh.has_halfedge_texcoords2D()) return false;
-    for (auto heh : mesh.halfedges())
-      if (mesh.texcoord2D(heh) != SkinnedMesh::TexCoord2D(0, 0)) return true;
+    for (auto heh : mesh.halfedges()) {
+      const auto t = mesh.texcoord2D(heh);
+      if (std::isfinite(t[0]) && std::isfinite(t[1]) && t != SkinnedMesh::TexCoord2D(0, 0)) return true;
+    }
     return false;
   }();
 
@@ -240,7 +242,8 @@ void export_gltf(const SkinnedMesh& mesh, const std::string& path) {
           c.n = {static_cast<float>(n[0]), static_cast<float>(n[1]), static_cast<float>(n[2])};
         }
         if (has_uv) {
-          const auto t = mesh.texcoord2D(heh);
+          auto t = mesh.texcoord2D(heh);
+          if (!std::isfinite(t[0]) || !std::isfinite(t[1])) t = SkinnedMesh::TexCoord2D(0, 0);
           c.uv = {t[0], 1.0f - t[1]};  // glTF's UV origin is top-left, assimp's bottom-left
         }
         auto [it, inserted] = index_of.emplace(c, static_cast<uint32_t>(index_of.size()));

@@ -106,6 +106,7 @@ SkinnedMesh loop_subdivide(const SkinnedMesh& in) {
     out.property(hom, out.add_face(m[0], m[1], m[2])) = mat;
   }
   out.update_face_normals();
+  clear_corner_attributes(out);
   return out;
 }
 

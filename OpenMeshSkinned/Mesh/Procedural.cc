@@ -90,6 +90,7 @@ SkinnedMesh make_skinned_tube(const TubeOptions& opt, double bend_degrees) {
       mesh.property(h_mat, mesh.add_face(b, c, d)) = 0;
     }
   mesh.update_face_normals();
+  clear_corner_attributes(mesh);
   for (auto heh : mesh.halfedges())
     if (!mesh.is_boundary(heh)) {
       const auto v = mesh.to_vertex_handle(heh);

@@ -31,4 +31,14 @@ inline void request_skinned_attributes(SkinnedMesh& mesh) {
   mesh.request_face_normals();
 }
 
+/// Sets every corner normal and UV to zero. OpenMesh leaves per-halfedge attributes uninitialised, and
+/// a generator that sets only some of them would otherwise export garbage (or NaN): zero normals are
+/// recomputed on export, all-zero UVs are not written.
+inline void clear_corner_attributes(SkinnedMesh& mesh) {
+  for (auto heh : mesh.halfedges()) {
+    mesh.set_normal(heh, SkinnedMesh::Normal(0, 0, 0));
+    mesh.set_texcoord2D(heh, SkinnedMesh::TexCoord2D(0, 0));
+  }
+}
+
 }  // namespace OpenMeshSkinned
