@@ -109,4 +109,5 @@ TEST(Cli, NoAnimationWithPosesExplainsAndRunsInRestPose) {
   EXPECT_NE(r.out.find("no animation"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("rest pose only"), std::string::npos) << r.out;
   EXPECT_TRUE(fs::exists(d / "t.glb"));
+  omsk_test::expect_valid_gltf((d / "t.glb").string());
 }

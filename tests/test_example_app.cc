@@ -28,6 +28,7 @@ TEST(ExampleApp, DefaultRunWritesTheLegLod) {
   const auto r = run("", d);
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_TRUE(fs::exists(d / "omsk-example-out" / "leg.glb")) << r.out;
+  omsk_test::expect_valid_gltf((d / "omsk-example-out" / "leg.glb").string());
 }
 
 TEST(ExampleApp, RealCharacterToGlb) {

@@ -94,6 +94,21 @@ int parent_of(const tinygltf::Model& m, int node) {
   return -1;
 }
 
+// A node named \p name carrying a new one-primitive mesh of the same name; returns the node's index.
+int add_mesh_node(tinygltf::Model& m, const std::string& name, const tinygltf::Primitive& prim,
+                  const std::vector<double>& translation) {
+  tinygltf::Mesh mesh;
+  mesh.name = name;
+  mesh.primitives.push_back(prim);
+  m.meshes.push_back(mesh);
+  tinygltf::Node node;
+  node.name = name;
+  node.mesh = static_cast<int>(m.meshes.size()) - 1;
+  node.translation = translation;
+  m.nodes.push_back(node);
+  return static_cast<int>(m.nodes.size()) - 1;
+}
+
 }  // namespace
 
 void wrap_under_rotated_root(tinygltf::Model& m, double degrees_x, double scale) {
@@ -145,16 +160,8 @@ void attach_rigid_box(tinygltf::Model& m, const std::string& joint, double size)
   prim.attributes["POSITION"] = add_accessor(m, pos, TINYGLTF_TYPE_VEC3, pos.size() / 3);
   prim.attributes["NORMAL"] = add_accessor(m, nrm, TINYGLTF_TYPE_VEC3, nrm.size() / 3);
   prim.indices = add_index_accessor(m, idx);
-  tinygltf::Mesh mesh;
-  mesh.name = "Helmet";
-  mesh.primitives.push_back(prim);
-  m.meshes.push_back(mesh);
-  tinygltf::Node node;
-  node.name = "Helmet";
-  node.mesh = static_cast<int>(m.meshes.size()) - 1;
-  node.translation = {0.0, 0.2 * size, 0.0};
-  m.nodes.push_back(node);
-  m.nodes[find_node(m, joint)].children.push_back(static_cast<int>(m.nodes.size()) - 1);
+  const int node = add_mesh_node(m, "Helmet", prim, {0.0, 0.2 * size, 0.0});
+  m.nodes[find_node(m, joint)].children.push_back(node);
 }
 
 namespace {
@@ -243,21 +250,13 @@ void split_into_second_skin(tinygltf::Model& m) {
   }
   skin_b.inverseBindMatrices = add_accessor(m, ibm_b, TINYGLTF_TYPE_MAT4, nj);
   m.skins.push_back(skin_b);
-  tinygltf::Mesh mesh_b;
-  mesh_b.name = "SecondHalf";
-  mesh_b.primitives.push_back(prim_b);
-  m.meshes.push_back(mesh_b);
-  tinygltf::Node node_b;
-  node_b.name = "SecondHalf";
-  node_b.mesh = static_cast<int>(m.meshes.size()) - 1;
-  node_b.skin = static_cast<int>(m.skins.size()) - 1;
-  node_b.translation = {10.0, 0.0, 0.0};  // ignored by the spec
-  m.nodes.push_back(node_b);
+  const int node_b = add_mesh_node(m, "SecondHalf", prim_b, {10.0, 0.0, 0.0});  // translation ignored by the spec
+  m.nodes[node_b].skin = static_cast<int>(m.skins.size()) - 1;
   const int parent = parent_of(m, node_a);
   if (parent >= 0)
-    m.nodes[parent].children.push_back(static_cast<int>(m.nodes.size()) - 1);
+    m.nodes[parent].children.push_back(node_b);
   else
-    m.scenes.at(m.defaultScene >= 0 ? m.defaultScene : 0).nodes.push_back(static_cast<int>(m.nodes.size()) - 1);
+    m.scenes.at(m.defaultScene >= 0 ? m.defaultScene : 0).nodes.push_back(node_b);
 }
 
 void add_morph_target(tinygltf::Model& m) {
