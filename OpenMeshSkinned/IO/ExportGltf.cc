@@ -21,9 +21,9 @@ class BufferWriter {
 public:
   explicit BufferWriter(tinygltf::Model& model) : model_(model) { model_.buffers.emplace_back(); }
 
+  /// Appends raw bytes as a buffer view of their own (what images need) and returns its index.
   template <typename T>
-  int add(const std::vector<T>& data, int component_type, int type, size_t count, int target,
-          std::vector<double> min = {}, std::vector<double> max = {}) {
+  int add_view(const std::vector<T>& data, int target = 0) {
     auto& bytes = model_.buffers[0].data;
     while (bytes.size() % 4) bytes.push_back(0);
     const size_t offset = bytes.size();
@@ -37,9 +37,14 @@ public:
     view.byteLength = n;
     if (target) view.target = target;
     model_.bufferViews.push_back(view);
+    return static_cast<int>(model_.bufferViews.size()) - 1;
+  }
 
+  template <typename T>
+  int add(const std::vector<T>& data, int component_type, int type, size_t count, int target,
+          std::vector<double> min = {}, std::vector<double> max = {}) {
     tinygltf::Accessor acc;
-    acc.bufferView = static_cast<int>(model_.bufferViews.size()) - 1;
+    acc.bufferView = add_view(data, target);
     acc.componentType = component_type;
     acc.type = type;
     acc.count = count;
@@ -184,10 +189,7 @@ void export_gltf(const SkinnedMesh& mesh, const std::string& path) {
       tinygltf::Image img;
       img.name = m.base_color_image.name;
       img.mimeType = m.base_color_image.mime_type;
-      img.bufferView = model.accessors[buf.add(m.base_color_image.data, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-                                               TINYGLTF_TYPE_SCALAR, m.base_color_image.data.size(), 0)]
-                           .bufferView;
-      model.accessors.pop_back();  // the view is what the image needs; no accessor points at image bytes
+      img.bufferView = buf.add_view(m.base_color_image.data);
       model.images.push_back(img);
       tinygltf::Texture tex;
       tex.source = static_cast<int>(model.images.size()) - 1;
