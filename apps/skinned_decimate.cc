@@ -8,6 +8,7 @@
 #include <OpenMeshSkinned/Eval/SurfaceDistance.hh>
 #include <OpenMeshSkinned/IO/ExportGltf.hh>
 #include <OpenMeshSkinned/IO/Import.hh>
+#include <OpenMeshSkinned/IO/OutputSet.hh>
 #include <OpenMeshSkinned/Mesh/Procedural.hh>
 #include <OpenMeshSkinned/Skin/PoseSchedule.hh>
 
@@ -49,7 +50,17 @@ struct Options {
   bool ratio_given = false;
   bool compare = false;
   bool bind_pose = true;
+  bool faces_given = false;
+  bool isolate = true;
+  size_t max_memory_mb = 8192;
+  double time_limit = 300.0;
 };
+
+// Past this many example poses the schedule stops being a sample of the clips and becomes the clips.
+constexpr int kMaxPoses = 1000;
+// What one example or held-out pose costs per vertex: posed position and pose quadric in the solver,
+// posed copies in the evaluation (measured: about 240 KB per pose on a 2,000-vertex character).
+constexpr size_t kBytesPerVertexPose = 128;
 
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -57,6 +68,7 @@ struct UsageError : std::runtime_error {
 
 struct Lod {
   double ratio = 0.0;
+  size_t target = 0;  // triangles asked for
   size_t faces = 0, vertices = 0;
   double seconds = 0.0;
   int max_influences = 0;
@@ -138,6 +150,7 @@ std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vect
     if (method != "static") dec.module(hf).release_deferred();  // give every vertex a chance next level
     Lod lod;
     lod.ratio = ratios[i];
+    lod.target = targets[i];
     lod.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     Mesh snap = mesh;
     snap.garbage_collection();
@@ -172,30 +185,6 @@ std::string lod_path(const std::string& output, size_t i, size_t n) {
   return (p.parent_path() / (p.stem().string() + "_lod" + std::to_string(i + 1) + p.extension().string())).string();
 }
 
-void write_atomically(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp" + std::to_string(::getpid());
-  {
-    std::ofstream f(tmp, std::ios::binary);
-    f << text;
-    if (!f) {
-      fs::remove(tmp);
-      throw std::runtime_error(path + ": cannot be written");
-    }
-  }
-  fs::rename(tmp, path);
-}
-
-// A folder we can create files in; checked before any work so a typo costs nothing.
-void check_writable(const std::string& path) {
-  const fs::path dir = fs::absolute(fs::path(path)).parent_path();
-  if (!fs::is_directory(dir)) throw UsageError(path + ": folder " + dir.string() + " does not exist");
-  const fs::path probe = dir / (".omsk-probe-" + std::to_string(::getpid()));
-  std::ofstream f(probe);
-  if (!f) throw UsageError(path + ": folder " + dir.string() + " is not writable");
-  f.close();
-  fs::remove(probe);
-}
-
 std::string fmt(double v, int prec) {
   std::ostringstream os;
   os << std::fixed << std::setprecision(prec) << v;
@@ -213,6 +202,10 @@ void print_table(const std::string& title, const std::vector<std::pair<Lod, Mesh
               << std::setw(10) << lod.vertices << std::setw(10) << fmt(lod.seconds, 2) << std::setw(10)
               << lod.max_influences << std::setw(14) << fmt(lod.rms, 4) << std::setw(15) << fmt(lod.hausdorff, 4)
               << "\n";
+  for (const auto& [lod, mesh] : chain)
+    if (lod.faces > lod.target)
+      std::cout << "  ratio " << fmt(lod.ratio, 4) << ": target of " << lod.target << " triangles not reached; stopped at "
+                << lod.faces << " (no collapse left that keeps the mesh valid)\n";
 }
 
 // --pose-clip as a name or an index; -1 when not given.
@@ -233,7 +226,8 @@ json times_json(const std::vector<OpenMeshSkinned::Clip>& clips, const std::vect
 
 // Runs one character through one method; prints the table; returns the report entry.
 json run_character(const Mesh& mesh, const std::string& name, const Options& opt, const std::string& method,
-                   const std::string& output, bool write_files) {
+                   const std::string& output, OpenMeshSkinned::OutputSet* outputs) {
+  const bool write_files = outputs != nullptr;
   using namespace OpenMeshSkinned;
   const auto& clips = OpenMeshSkinned::clips(mesh);
   Mesh work = mesh;
@@ -277,9 +271,11 @@ json run_character(const Mesh& mesh, const std::string& name, const Options& opt
     auto& [lod, lmesh] = chain[i];
     if (write_files) {
       lod.file = lod_path(output, i, chain.size());
-      export_gltf(lmesh, lod.file);
+      export_gltf(lmesh, outputs->staging(lod.file));
     }
     json l = {{"ratio", lod.ratio},
+              {"target_faces", lod.target},
+              {"target_reached", lod.faces <= lod.target},
               {"faces", lod.faces},
               {"vertices", lod.vertices},
               {"seconds", lod.seconds},
@@ -311,13 +307,40 @@ void print_comparison(const json& runs) {
                 << "\n";
 }
 
+// Every file this run will write, planned before any work so that a clash costs nothing.
+void plan_outputs(const Options& opt, const std::vector<std::string>& names, OpenMeshSkinned::OutputSet& outputs) {
+  const size_t n = std::max<size_t>(1, opt.lods.size());
+  for (const std::string& name : names)
+    for (size_t i = 0; i < n; ++i) outputs.add(lod_path(name, i, n));
+  if (!opt.report.empty()) outputs.add(opt.report);
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream f(path, std::ios::binary);
+  f << text;
+  f.close();
+  if (!f) throw OpenMeshSkinned::IOError(path + ": cannot be written");
+}
+
+// The memory the example and held-out poses will take, checked before the decimater allocates it.
+void check_pose_budget(const Mesh& mesh, const Options& opt) {
+  const size_t poses = 2 * size_t(opt.poses) + 2;  // examples + bind, held-out frames in between
+  const size_t need_mb = (poses * mesh.n_vertices() * kBytesPerVertexPose >> 20) + 1;
+  if (opt.max_memory_mb > 0 && need_mb > opt.max_memory_mb)
+    throw UsageError("--poses " + std::to_string(opt.poses) + ": needs about " + std::to_string(need_mb) +
+                     " MB for this mesh (" + std::to_string(mesh.n_vertices()) + " vertices), over --max-memory " +
+                     std::to_string(opt.max_memory_mb) + " MB");
+}
+
 int run(const Options& opt) {
   if (opt.ratio_given && !(opt.ratio > 0.0 && opt.ratio <= 1.0)) throw UsageError("--ratio must be in (0, 1]");
+  if (opt.faces_given && opt.faces == 0) throw UsageError("--faces must be at least 1");
   for (double r : opt.lods)
     if (!(r > 0.0 && r <= 1.0)) throw UsageError("--lods: every ratio must be in (0, 1], got " + fmt(r, 4));
   if (opt.max_influences < 1 || opt.max_influences > OpenMeshSkinned::Influences::kCapacity)
     throw UsageError("--max-influences must be 1 to " + std::to_string(OpenMeshSkinned::Influences::kCapacity));
-  if (opt.poses < 1) throw UsageError("--poses must be at least 1");
+  if (opt.poses < 1 || opt.poses > kMaxPoses) throw UsageError("--poses must be 1 to " + std::to_string(kMaxPoses));
+  if (!(opt.time_limit >= 0.0)) throw UsageError("--time-limit must be 0 (none) or more seconds");
   if (opt.method != "skinned" && opt.method != "static" && opt.method != "rest" && opt.method != "dsd" &&
       opt.method != "decoro")
     throw UsageError("--method must be skinned, decoro, dsd, rest or static");
@@ -327,10 +350,11 @@ int run(const Options& opt) {
     // Built-in default: the papers' own characters, skinned next to static, files in one folder.
     const std::string dir = opt.output.empty() ? "skinned-decimate-demo" : opt.output;
     fs::create_directories(dir);
-    check_writable((fs::path(dir) / "x.glb").string());
-    std::cout << "No INPUT: running the papers' test characters; output in " << dir << "/\n\n";
     Options o = opt;
     if (o.lods.empty()) o.lods = {0.5, 0.1, 0.02};
+    OpenMeshSkinned::OutputSet outputs;
+    plan_outputs(o, {(fs::path(dir) / "leg.glb").string(), (fs::path(dir) / "column.glb").string()}, outputs);
+    std::cout << "No INPUT: running the papers' test characters; output in " << dir << "/\n\n";
     json runs = json::array();
     const std::pair<std::string, Mesh> characters[] = {
         {"leg", OpenMeshSkinned::make_bending_cylinder(32, 64)},
@@ -339,42 +363,55 @@ int run(const Options& opt) {
       o.poses = name == "leg" ? 2 : 4;  // the papers' example poses: knee at 0 and 90; the column's four bends
       o.pose_clip = "";
       Mesh m = mesh;
-      runs.push_back(run_character(m, name, o, "skinned", (fs::path(dir) / (name + ".glb")).string(), true));
-      runs.push_back(run_character(m, name, o, "static", "", false));
+      runs.push_back(run_character(m, name, o, "skinned", (fs::path(dir) / (name + ".glb")).string(), &outputs));
+      runs.push_back(run_character(m, name, o, "static", "", nullptr));
       std::cout << "\n";
     }
     report = {{"input", "built-in"}, {"runs", runs}};
+    if (!opt.report.empty()) write_text(outputs.staging(opt.report), report.dump(2) + "\n");
+    outputs.commit();
     std::cout << "Static = OpenMesh's rest-pose quadric with endpoint weights; skinned = this library. The error\n"
                  "columns are measured in frames the decimater never saw.\n";
-  } else {
-    if (opt.output.empty()) throw UsageError("-o OUTPUT.glb is required with an INPUT");
-    const std::string ext = fs::path(opt.output).extension().string();
-    if (ext != ".glb" && ext != ".gltf") throw UsageError(opt.output + ": output must end in .glb or .gltf");
-    check_writable(opt.output);
-    if (!opt.report.empty()) check_writable(opt.report);
-    Mesh mesh;
-    const auto rep = OpenMeshSkinned::import_skinned(opt.input, mesh);
-    if (opt.faces > mesh.n_faces())
-      throw UsageError("--faces " + std::to_string(opt.faces) + " is more than the input's " +
-                       std::to_string(mesh.n_faces()) + " triangles");
-    if (!OpenMeshSkinned::clips(mesh).empty()) resolve_clip(OpenMeshSkinned::clips(mesh), opt.pose_clip, opt.input);
-    if (!opt.quiet)  // after the checks, so that a bad argument is one line
-      for (const auto& w : rep.warnings) std::cerr << "skinned-decimate: warning: " << opt.input << ": " << w << "\n";
-    Options o = opt;
-    if (o.lods.empty() && o.faces == 0 && !o.ratio_given) o.ratio = 0.5;
-    if (o.compare) {
-      json runs = json::array();
-      for (const char* m : {"skinned", "decoro", "dsd", "rest", "static"}) {
-        runs.push_back(run_character(mesh, opt.input, o, m, opt.output, std::string(m) == opt.method));
-        std::cout << "\n";
-      }
-      print_comparison(runs);
-      report = {{"input", opt.input}, {"runs", runs}};
-    } else {
-      report = run_character(mesh, opt.input, o, opt.method, opt.output, true);
-    }
+    return 0;
   }
-  if (!opt.report.empty()) write_atomically(opt.report, report.dump(2) + "\n");
+
+  if (opt.output.empty()) throw UsageError("-o OUTPUT.glb is required with an INPUT");
+  const std::string ext = fs::path(opt.output).extension().string();
+  if (ext != ".glb" && ext != ".gltf") throw UsageError(opt.output + ": output must end in .glb or .gltf");
+  OpenMeshSkinned::OutputSet outputs({opt.input});
+  try {
+    plan_outputs(opt, {opt.output}, outputs);
+  } catch (const OpenMeshSkinned::IOError& e) {
+    throw UsageError(e.what());  // a clash or a missing folder is the command line's fault: exit 2
+  }
+  Mesh mesh;
+  OpenMeshSkinned::ImportOptions io;
+  io.isolate = opt.isolate;
+  io.memory_limit_mb = opt.max_memory_mb;
+  io.time_limit_seconds = opt.time_limit;
+  const auto rep = OpenMeshSkinned::import_skinned(opt.input, mesh, io);
+  if (opt.faces > mesh.n_faces())
+    throw UsageError("--faces " + std::to_string(opt.faces) + " is more than the input's " +
+                     std::to_string(mesh.n_faces()) + " triangles");
+  if (!OpenMeshSkinned::clips(mesh).empty()) resolve_clip(OpenMeshSkinned::clips(mesh), opt.pose_clip, opt.input);
+  check_pose_budget(mesh, opt);
+  // After the checks, so that a bad argument is one line. Always shown: they say what was changed or lost.
+  for (const auto& w : rep.warnings) std::cerr << "skinned-decimate: warning: " << opt.input << ": " << w << "\n";
+  Options o = opt;
+  if (o.lods.empty() && o.faces == 0 && !o.ratio_given) o.ratio = 0.5;
+  if (o.compare) {
+    json runs = json::array();
+    for (const char* m : {"skinned", "decoro", "dsd", "rest", "static"}) {
+      runs.push_back(run_character(mesh, opt.input, o, m, opt.output, std::string(m) == opt.method ? &outputs : nullptr));
+      std::cout << "\n";
+    }
+    print_comparison(runs);
+    report = {{"input", opt.input}, {"runs", runs}};
+  } else {
+    report = run_character(mesh, opt.input, o, opt.method, opt.output, &outputs);
+  }
+  if (!opt.report.empty()) write_text(outputs.staging(opt.report), report.dump(2) + "\n");
+  outputs.commit();
   return 0;
 }
 
@@ -404,6 +441,12 @@ int main(int argc, char** argv) {
   app.add_option("--report", opt.report, "Write the summary as JSON");
   app.add_flag("--quiet", opt.quiet, "No progress and no pose list");
   app.add_flag("!--no-bind-pose", opt.bind_pose, "Do not add the bind pose to the example poses");
+  app.add_flag("!--no-isolate", opt.isolate,
+               "Read the input in this process (by default a child process reads it, so that a reader crash on a "
+               "corrupt file is a clean error)");
+  app.add_option("--max-memory", opt.max_memory_mb,
+                 "Memory limit in MB for reading the input and for the example poses (default 8192; 0 = none)");
+  app.add_option("--time-limit", opt.time_limit, "Seconds the input's reader may take (default 300; 0 = none)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -414,6 +457,7 @@ int main(int argc, char** argv) {
   }
   opt.poses_given = app.count("--poses") > 0;
   opt.ratio_given = app.count("--ratio") > 0;
+  opt.faces_given = app.count("--faces") > 0;
   std::vector<double> lods = opt.lods;
   std::sort(lods.rbegin(), lods.rend());
   opt.lods = lods;

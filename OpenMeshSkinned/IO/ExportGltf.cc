@@ -152,7 +152,8 @@ void export_gltf(const SkinnedMesh& mesh, const std::string& path) {
   const int n_joints = skel.size();
   for (const Joint& j : skel.joints) {
     tinygltf::Node node;
-    node.name = j.name;
+    // tinygltf writes a node with no name and an identity transform as null, which no reader accepts.
+    node.name = j.name.empty() ? "joint" + std::to_string(model.nodes.size()) : j.name;
     write_node_trs(node, j.rest_local);
     model.nodes.push_back(node);
   }

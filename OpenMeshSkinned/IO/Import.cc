@@ -1,5 +1,8 @@
 #include "OpenMeshSkinned/IO/Import.hh"
 
+#include "OpenMeshSkinned/IO/GltfRepair.hh"
+#include "OpenMeshSkinned/IO/IsolatedImport.hh"
+#include "OpenMeshSkinned/IO/ReaderLog.hh"
 #include "OpenMeshSkinned/IO/Textures.hh"
 #include "OpenMeshSkinned/Skin/Morph.hh"
 
@@ -214,20 +217,39 @@ ImportReport import_skinned(const std::string& path, SkinnedMesh& mesh, const Im
   if (!fs::exists(path, ec)) throw fail("file does not exist");
   if (fs::is_directory(path, ec)) throw fail("is a directory, not a file");
   if (fs::file_size(path, ec) == 0) throw fail("file is empty");
+  const RepairedGltf repaired(path);
+  const std::string& read_path = repaired.path().empty() ? path : repaired.path();
+  if (opt.isolate) return import_isolated(path, read_path, mesh, opt);
+  return detail::import_scene(path, read_path, mesh, opt);
+}
 
+ImportReport detail::import_scene(const std::string& path, const std::string& read_path, SkinnedMesh& mesh,
+                                  const ImportOptions& opt) {
+  namespace fs = std::filesystem;
+  auto fail = [&path](const std::string& what) -> IOError { return IOError(path + ": " + what); };
+  const ReaderLog log;
   Assimp::Importer importer;
   // No PreTransformVertices or OptimizeGraph: both would destroy the skeleton we need.
   const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
                          aiProcess_ValidateDataStructure;
-  const aiScene* scene = importer.ReadFile(path, flags);
+  const aiScene* scene = importer.ReadFile(read_path, flags);
   if (!scene) {
     std::string msg = importer.GetErrorString();
     while (!msg.empty() && (msg.back() == '\n' || msg.back() == '\r')) msg.pop_back();
+    // One line, of a readable length: a reader may quote half the file back.
     for (char& ch : msg)
-      if (ch == '\n' || ch == '\r') ch = ' ';
+      if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) ch = ' ';
+    if (msg.size() > 240) msg = msg.substr(0, 240) + " [...]";
     throw fail("cannot be read: " + msg);
   }
   if (!scene->mRootNode || scene->mNumMeshes == 0) throw fail("contains no mesh");
+  // Skeleton-only files (BVH, MD5 anim) get a stand-in mesh of boxes around the bones from assimp.
+  bool stand_in = scene->mNumMaterials > 0;
+  for (unsigned m = 0; m < scene->mNumMaterials; ++m) {
+    aiString name;
+    stand_in &= scene->mMaterials[m]->Get(AI_MATKEY_NAME, name) == AI_SUCCESS && std::string(name.C_Str()) == "SkeletonMaterial";
+  }
+  if (stand_in) throw fail("contains no mesh, only a skeleton and its animation (nothing to decimate)");
 
   const SceneNodes sn(scene->mRootNode);
   const std::string source_dir = fs::absolute(fs::path(path)).parent_path().string();
@@ -613,6 +635,7 @@ ImportReport import_skinned(const std::string& path, SkinnedMesh& mesh, const Im
   }
   rep.clips = clips(mesh).size();
   example_poses(mesh) = {Pose::identity(skel.size())};
+  for (const std::string& m : log.data_loss()) rep.warnings.push_back("the reader dropped data: " + m);
 
   try {
     ValidationOptions vo;

@@ -4,19 +4,13 @@
  *  SkinnedMesh carrying its skeleton, skin, animation clips and materials.
  */
 
+#include "OpenMeshSkinned/IO/IOError.hh"
 #include "OpenMeshSkinned/Mesh/SkinnedMesh.hh"
 
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace OpenMeshSkinned {
-
-/// An input or output file that cannot be used; what() is one line: "<file>: <problem>".
-class IOError : public std::runtime_error {
-public:
-  using std::runtime_error::runtime_error;
-};
 
 struct ImportOptions {
   /** Rescale every vertex's weights to sum to one, whatever the sum (default). FBX and Collada store raw
@@ -26,6 +20,14 @@ struct ImportOptions {
    *  error. */
   bool normalize_weights = true;
   double sum_tolerance = 1e-2;
+
+  /** Read the file in a child process (POSIX fork) under the limits below, so that a reader bug on a
+   *  corrupt or hostile file (assimp 5.2's X and MD5 readers crash, or allocate without bound, on some)
+   *  ends as an IOError instead of taking the calling process down. Off by default; the command-line tool
+   *  turns it on. Call it before your process starts threads (fork copies only the calling thread). */
+  bool isolate = false;
+  size_t memory_limit_mb = 8192;      ///< address space the isolated reader may use; 0 = no limit
+  double time_limit_seconds = 300.0;  ///< wall-clock time the isolated reader may take; 0 = no limit
 };
 
 /// What the importer did to the data, for the user to read.
@@ -61,5 +63,12 @@ struct ImportReport {
  *  skin is bound rigidly to its node (which becomes a joint). The example poses are set to the bind pose.
  *  Throws IOError (missing, empty, unreadable or invalid file, or an unusable skin). */
 ImportReport import_skinned(const std::string& path, SkinnedMesh& mesh, const ImportOptions& opt = {});
+
+namespace detail {
+/// import_skinned() after its checks, in this process: reads \p read_path (a repaired copy, or \p path),
+/// names \p path in errors and finds textures beside it.
+ImportReport import_scene(const std::string& path, const std::string& read_path, SkinnedMesh& mesh,
+                          const ImportOptions& opt);
+}  // namespace detail
 
 }  // namespace OpenMeshSkinned

@@ -1,0 +1,138 @@
+#include "OpenMeshSkinned/IO/GltfRepair.hh"
+
+#include "OpenMeshSkinned/IO/IOError.hh"
+
+#include <cereal/external/base64.hpp>
+#include <nlohmann/json.hpp>
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+namespace OpenMeshSkinned {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+uint32_t le32(const std::string& s, size_t at) {
+  uint32_t v = 0;
+  std::memcpy(&v, s.data() + at, 4);
+  return v;
+}
+void put32(std::string& s, uint32_t v) { s.append(reinterpret_cast<const char*>(&v), 4); }
+
+// Adds identity inverse bind matrices to every skin without them; false when none was missing.
+bool add_identity_inverse_binds(json& doc) {
+  if (!doc.contains("skins") || !doc["skins"].is_array()) return false;
+  bool changed = false;
+  for (auto& skin : doc["skins"]) {
+    if (!skin.is_object() || skin.contains("inverseBindMatrices") || !skin.contains("joints") ||
+        !skin["joints"].is_array() || skin["joints"].empty())
+      continue;
+    const size_t n = skin["joints"].size();
+    std::vector<float> m(16 * n, 0.0f);
+    for (size_t j = 0; j < n; ++j)
+      for (int d = 0; d < 4; ++d) m[16 * j + 5 * d] = 1.0f;
+    const auto* bytes = reinterpret_cast<const unsigned char*>(m.data());
+    const size_t length = m.size() * sizeof(float);
+    auto& buffers = doc["buffers"];
+    auto& views = doc["bufferViews"];
+    auto& accessors = doc["accessors"];
+    buffers.push_back({{"byteLength", length},
+                       {"uri", "data:application/octet-stream;base64," + cereal::base64::encode(bytes, length)}});
+    views.push_back({{"buffer", buffers.size() - 1}, {"byteLength", length}});
+    accessors.push_back({{"bufferView", views.size() - 1}, {"componentType", 5126}, {"count", n}, {"type", "MAT4"}});
+    skin["inverseBindMatrices"] = accessors.size() - 1;
+    changed = true;
+  }
+  return changed;
+}
+
+// A .gltf's external buffers and images, linked into the scratch folder so that the copy finds them.
+void link_resources(const json& doc, const fs::path& source_dir, const fs::path& scratch, const std::string& path) {
+  for (const char* kind : {"buffers", "images"}) {
+    if (!doc.contains(kind) || !doc[kind].is_array()) continue;
+    for (const auto& r : doc[kind]) {
+      if (!r.is_object() || !r.contains("uri") || !r["uri"].is_string()) continue;
+      const std::string uri = r["uri"];
+      if (uri.rfind("data:", 0) == 0) continue;
+      const fs::path rel(uri);
+      bool outside = rel.is_absolute() || uri.find(':') != std::string::npos;
+      for (const auto& part : rel) outside |= part == "..";
+      if (outside)
+        throw IOError(path + ": has a skin without inverseBindMatrices (which assimp 5.2 cannot read) and refers to \"" +
+                      uri + "\" outside its folder, so it cannot be repaired on the way in");
+      const fs::path target = fs::absolute(source_dir / rel);
+      if (!fs::exists(target)) continue;  // the reader reports the missing file
+      fs::create_directories((scratch / rel).parent_path());
+      fs::create_symlink(target, scratch / rel);
+    }
+  }
+}
+
+}  // namespace
+
+RepairedGltf::RepairedGltf(const std::string& path) {
+  const std::string ext = fs::path(path).extension().string();
+  const bool glb = ext == ".glb" || ext == ".GLB";
+  if (!glb && ext != ".gltf" && ext != ".GLTF") return;
+  std::ifstream in(path, std::ios::binary);
+  const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+
+  json doc;
+  std::string bin_chunks;  // every chunk after the JSON one, as it is
+  if (glb) {
+    if (data.size() < 20 || data.compare(0, 4, "glTF") != 0) return;
+    const uint32_t json_len = le32(data, 12);
+    if (data.compare(16, 4, "JSON") != 0 || 20ull + json_len > data.size()) return;
+    doc = json::parse(data.begin() + 20, data.begin() + 20 + json_len, nullptr, false);
+    bin_chunks = data.substr(20 + json_len);
+  } else {
+    doc = json::parse(data, nullptr, false);
+  }
+  if (doc.is_discarded() || !doc.is_object() || !add_identity_inverse_binds(doc)) return;  // the reader judges
+
+  std::string tmpl = (fs::temp_directory_path() / "omsk-gltf-XXXXXX").string();
+  if (!::mkdtemp(tmpl.data())) throw IOError(path + ": no temporary folder for a repaired copy: " + std::strerror(errno));
+  dir_ = tmpl;
+  try {
+    const fs::path scratch(dir_);
+    const fs::path out = scratch / fs::path(path).filename();
+    std::string text = doc.dump();
+    std::string file;
+    if (glb) {
+      while (text.size() % 4) text += ' ';
+      file = "glTF";
+      put32(file, 2);
+      put32(file, uint32_t(12 + 8 + text.size() + bin_chunks.size()));
+      put32(file, uint32_t(text.size()));
+      file += "JSON";
+      file += text;
+      file += bin_chunks;
+    } else {
+      link_resources(doc, fs::absolute(fs::path(path)).parent_path(), scratch, path);
+      file = text;
+    }
+    std::ofstream f(out, std::ios::binary);
+    f << file;
+    if (!f) throw IOError(path + ": the repaired copy cannot be written to " + dir_);
+    path_ = out.string();
+  } catch (...) {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+    throw;
+  }
+}
+
+RepairedGltf::~RepairedGltf() {
+  std::error_code ec;
+  if (!dir_.empty()) fs::remove_all(dir_, ec);
+}
+
+}  // namespace OpenMeshSkinned

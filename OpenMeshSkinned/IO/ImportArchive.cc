@@ -1,0 +1,188 @@
+#include "OpenMeshSkinned/IO/ImportArchive.hh"
+
+#include "OpenMeshSkinned/Skin/Morph.hh"
+#include "OpenMeshSkinned/Skin/SkinProperties.hh"
+
+#include <cereal/archives/binary.hpp>
+#include <cereal/types/array.hpp>
+#include <cereal/types/string.hpp>
+#include <cereal/types/vector.hpp>
+
+#include <sstream>
+
+// Fixed-size Eigen types as raw bytes: both ends are the same build on the same machine.
+namespace cereal {
+template <class Ar, typename S, int R, int C, int O, int MR, int MC>
+void serialize(Ar& ar, Eigen::Matrix<S, R, C, O, MR, MC>& m) {
+  static_assert(R > 0 && C > 0, "fixed-size matrices only");
+  ar(binary_data(m.data(), sizeof(S) * R * C));
+}
+template <class Ar>
+void serialize(Ar& ar, Eigen::Quaterniond& q) {
+  ar(binary_data(q.coeffs().data(), sizeof(double) * 4));
+}
+}  // namespace cereal
+
+namespace OpenMeshSkinned {
+
+template <class Ar>
+void serialize(Ar& ar, Joint& j) { ar(j.name, j.parent, j.rest_local, j.inverse_bind); }
+template <class Ar>
+void serialize(Ar& ar, Skeleton& s) { ar(s.joints); }
+template <class Ar>
+void serialize(Ar& ar, Channel& c) {
+  ar(c.joint, c.translation_times, c.translations, c.rotation_times, c.rotations, c.scale_times, c.scales);
+}
+template <class Ar>
+void serialize(Ar& ar, MorphChannel& c) { ar(c.target, c.times, c.weights); }
+template <class Ar>
+void serialize(Ar& ar, Clip& c) { ar(c.name, c.duration, c.channels, c.morph_channels); }
+template <class Ar>
+void serialize(Ar& ar, Pose& p) { ar(p.label, p.joint, p.morph_weights); }
+template <class Ar>
+void serialize(Ar& ar, MorphTarget& t) { ar(t.name); }
+template <class Ar>
+void serialize(Ar& ar, Image& i) { ar(i.name, i.mime_type, i.data); }
+template <class Ar>
+void serialize(Ar& ar, Material& m) { ar(m.name, m.base_color, m.base_color_texture, m.base_color_image); }
+template <class Ar>
+void serialize(Ar& ar, ImportReport& r) {
+  ar(r.source_meshes, r.source_vertices, r.welded_vertices, r.faces, r.degenerate_faces_skipped,
+     r.nonmanifold_vertices_added, r.unweighted_vertices, r.truncated_vertices, r.renormalized_vertices,
+     r.min_weight_sum, r.max_weight_sum, r.zero_area_faces, r.twin_joints, r.morph_targets, r.joints, r.clips,
+     r.rigid, r.warnings);
+}
+
+namespace {
+
+constexpr uint32_t kMagic = 0x4b534d4f;  // "OMSK"
+constexpr uint32_t kVersion = 1;
+
+// The mesh as flat arrays: the face list rebuilds the same connectivity (the importer already split
+// every complex edge and vertex), and corners are stored in each face's vertex order.
+struct Flat {
+  std::vector<double> points;
+  std::vector<int32_t> face_vertices, face_material;
+  std::vector<double> corner_normals;  // 3 x 3 per face
+  std::vector<float> corner_uvs;       // 3 x 2 per face
+  std::vector<int32_t> inf_joints;                // Influences::kCapacity per vertex, -1 = none
+  std::vector<double> inf_weights;
+  std::vector<MorphTarget> morph_targets;
+  std::vector<MorphDeltas> morph_deltas;
+  Skeleton skeleton;
+  std::vector<Pose> poses;
+  std::vector<Clip> clips;
+  std::vector<Material> materials;
+
+  template <class Ar>
+  void serialize(Ar& ar) {
+    ar(points, face_vertices, face_material, corner_normals, corner_uvs, inf_joints, inf_weights, morph_targets,
+       morph_deltas, skeleton, poses, clips, materials);
+  }
+};
+
+}  // namespace
+
+std::string save_import(const SkinnedMesh& mesh, const ImportReport& report) {
+  Flat f;
+  const auto h_inf = influences_handle(mesh);
+  const auto h_fmat = face_material_handle(mesh);
+  OpenMesh::VPropHandleT<MorphDeltas> h_delta;
+  const bool morphs = morph_deltas_handle(mesh, h_delta);
+  for (auto vh : mesh.vertices()) {
+    const auto& p = mesh.point(vh);
+    f.points.insert(f.points.end(), {p[0], p[1], p[2]});
+    const Influences& inf = mesh.property(h_inf, vh);
+    for (int k = 0; k < Influences::kCapacity; ++k) {
+      f.inf_joints.push_back(k < inf.size() ? inf[k].joint : -1);
+      f.inf_weights.push_back(k < inf.size() ? inf[k].weight : 0.0);
+    }
+    if (morphs) f.morph_deltas.push_back(mesh.property(h_delta, vh));
+  }
+  for (auto fh : mesh.faces()) {
+    f.face_material.push_back(mesh.property(h_fmat, fh));
+    for (auto heh : mesh.fh_range(fh)) {
+      f.face_vertices.push_back(mesh.to_vertex_handle(heh).idx());
+      const auto& n = mesh.normal(heh);
+      const auto& t = mesh.texcoord2D(heh);
+      f.corner_normals.insert(f.corner_normals.end(), {n[0], n[1], n[2]});
+      f.corner_uvs.insert(f.corner_uvs.end(), {t[0], t[1]});
+    }
+  }
+  f.morph_targets = morph_targets(mesh);
+  f.skeleton = skeleton(mesh);
+  f.poses = example_poses(mesh);
+  f.clips = clips(mesh);
+  f.materials = materials(mesh);
+
+  std::ostringstream os(std::ios::binary);
+  {
+    cereal::BinaryOutputArchive ar(os);
+    ar(kMagic, kVersion, f, const_cast<ImportReport&>(report));
+  }
+  return os.str();
+}
+
+void load_import(const std::string& bytes, SkinnedMesh& mesh, ImportReport& report) {
+  Flat f;
+  try {
+    std::istringstream is(bytes, std::ios::binary);
+    cereal::BinaryInputArchive ar(is);
+    uint32_t magic = 0, version = 0;
+    ar(magic, version);
+    if (magic != kMagic || version != kVersion) throw IOError("import archive: wrong format or version");
+    ar(f, report);
+  } catch (const cereal::Exception& e) {
+    throw IOError(std::string("import archive: truncated or corrupt (") + e.what() + ")");
+  }
+  const size_t nv = f.points.size() / 3, nf = f.face_material.size();
+  const size_t kc = Influences::kCapacity;
+  if (f.points.size() != 3 * nv || f.face_vertices.size() != 3 * nf || f.corner_normals.size() != 9 * nf ||
+      f.corner_uvs.size() != 6 * nf || f.inf_joints.size() != kc * nv || f.inf_weights.size() != kc * nv ||
+      (!f.morph_deltas.empty() && f.morph_deltas.size() != nv))
+    throw IOError("import archive: inconsistent array sizes");
+
+  mesh.clear();
+  request_skinned_attributes(mesh);
+  const auto h_inf = add_skin(mesh);
+  const auto h_fmat = face_material_handle(mesh);
+  OpenMesh::VPropHandleT<MorphDeltas> h_delta;
+  if (!f.morph_targets.empty()) h_delta = add_morph_targets(mesh);
+  for (size_t v = 0; v < nv; ++v) {
+    const auto vh = mesh.add_vertex(SkinnedMesh::Point(f.points[3 * v], f.points[3 * v + 1], f.points[3 * v + 2]));
+    Influences inf;
+    for (size_t k = 0; k < kc && f.inf_joints[kc * v + k] >= 0; ++k) inf.push(f.inf_joints[kc * v + k], f.inf_weights[kc * v + k]);
+    mesh.property(h_inf, vh) = inf;
+    if (!f.morph_targets.empty()) mesh.property(h_delta, vh) = f.morph_deltas.at(v);
+  }
+  for (size_t i = 0; i < nf; ++i) {
+    std::vector<SkinnedMesh::VertexHandle> vs;
+    for (int c = 0; c < 3; ++c) {
+      const int32_t v = f.face_vertices[3 * i + c];
+      if (v < 0 || size_t(v) >= nv) throw IOError("import archive: face index out of range");
+      vs.push_back(mesh.vertex_handle(v));
+    }
+    const auto fh = mesh.add_face(vs);
+    if (!fh.is_valid()) throw IOError("import archive: a face cannot be rebuilt");
+    mesh.property(h_fmat, fh) = f.face_material[i];
+    for (auto heh : mesh.fh_range(fh))
+      for (int c = 0; c < 3; ++c) {
+        if (vs[c] != mesh.to_vertex_handle(heh)) continue;
+        const double* n = &f.corner_normals[9 * i + 3 * c];
+        mesh.set_normal(heh, SkinnedMesh::Normal(n[0], n[1], n[2]));
+        mesh.set_texcoord2D(heh, SkinnedMesh::TexCoord2D(f.corner_uvs[6 * i + 2 * c], f.corner_uvs[6 * i + 2 * c + 1]));
+      }
+  }
+  mesh.update_face_normals();
+  for (auto fh : mesh.faces()) {
+    const auto n = mesh.normal(fh);
+    if (!std::isfinite(n[0]) || !std::isfinite(n[1]) || !std::isfinite(n[2])) mesh.set_normal(fh, SkinnedMesh::Normal(0, 0, 0));
+  }
+  if (!f.morph_targets.empty()) morph_targets(mesh) = std::move(f.morph_targets);
+  skeleton(mesh) = std::move(f.skeleton);
+  example_poses(mesh) = std::move(f.poses);
+  clips(mesh) = std::move(f.clips);
+  materials(mesh) = std::move(f.materials);
+}
+
+}  // namespace OpenMeshSkinned

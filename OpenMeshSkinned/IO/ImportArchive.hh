@@ -1,0 +1,19 @@
+#pragma once
+/** \file ImportArchive.hh
+ *  An imported character (mesh, skin, skeleton, clips, materials, morph targets) and its ImportReport as
+ *  bytes and back. It is how the isolated importer hands its result across a process boundary, so it
+ *  carries everything import_skinned() produces, exactly (bit-identical numbers).
+ */
+
+#include "OpenMeshSkinned/IO/Import.hh"
+
+#include <string>
+
+namespace OpenMeshSkinned {
+
+std::string save_import(const SkinnedMesh& mesh, const ImportReport& report);
+
+/// Rebuilds \p mesh (cleared first) and \p report; throws IOError when \p bytes are not an archive.
+void load_import(const std::string& bytes, SkinnedMesh& mesh, ImportReport& report);
+
+}  // namespace OpenMeshSkinned

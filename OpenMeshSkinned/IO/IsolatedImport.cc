@@ -1,0 +1,145 @@
+#include "OpenMeshSkinned/IO/IsolatedImport.hh"
+
+#include "OpenMeshSkinned/IO/ImportArchive.hh"
+
+#include <assimp/Importer.hpp>
+#include <assimp/importerdesc.h>
+
+#include <poll.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <new>
+
+namespace OpenMeshSkinned {
+namespace {
+
+// The child's verdict, first byte of what it sends.
+constexpr char kOk = 'K', kError = 'E', kOutOfMemory = 'M';
+
+bool write_all(int fd, const std::string& s) {
+  size_t done = 0;
+  while (done < s.size()) {
+    const ssize_t n = ::write(fd, s.data() + done, s.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    done += size_t(n);
+  }
+  return true;
+}
+
+std::string format_name(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  if (!ext.empty()) ext.erase(0, 1);
+  Assimp::Importer importer;
+  const size_t i = importer.GetImporterIndex(ext.c_str());
+  if (const aiImporterDesc* d = i == size_t(-1) ? nullptr : importer.GetImporterInfo(i)) return d->mName;
+  return ext.empty() ? std::string("unknown") : "." + ext;
+}
+
+bool looks_like_oom(const std::string& message) {
+  return message.find("bad_alloc") != std::string::npos || message.find("out of memory") != std::string::npos;
+}
+
+[[noreturn]] void run_child(int fd, const std::string& path, const std::string& read_path, const ImportOptions& opt) {
+  rlimit core{0, 0};
+  ::setrlimit(RLIMIT_CORE, &core);  // a crash of the reader is expected on bad files: no core dumps
+#if !defined(__SANITIZE_ADDRESS__)
+  // AddressSanitizer reserves terabytes of shadow address space, so the limit only applies without it.
+  if (opt.memory_limit_mb > 0) {
+    const rlim_t bytes = rlim_t(opt.memory_limit_mb) << 20;
+    rlimit as{bytes, bytes};
+    ::setrlimit(RLIMIT_AS, &as);
+  }
+#endif
+  std::string out;
+  try {
+    SkinnedMesh mesh;
+    const ImportReport rep = detail::import_scene(path, read_path, mesh, opt);
+    out = kOk + save_import(mesh, rep);
+  } catch (const std::bad_alloc&) {
+    out = std::string(1, kOutOfMemory);
+  } catch (const std::length_error&) {  // a size read from the file beyond what a container can hold
+    out = std::string(1, kOutOfMemory);
+  } catch (const std::exception& e) {
+    out = (looks_like_oom(e.what()) ? kOutOfMemory : kError) + std::string(e.what());
+  }
+  _exit(write_all(fd, out) ? 0 : 1);  // _exit: none of the parent's atexit handlers or buffers run twice
+}
+
+}  // namespace
+
+ImportReport import_isolated(const std::string& path, const std::string& read_path, SkinnedMesh& mesh,
+                             const ImportOptions& opt) {
+  auto fail = [&path](const std::string& what) { return IOError(path + ": " + what); };
+  int fds[2];
+  if (::pipe(fds) != 0) throw fail(std::string("cannot start the isolated reader: ") + std::strerror(errno));
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    throw fail(std::string("cannot start the isolated reader: ") + std::strerror(errno));
+  }
+  if (pid == 0) {
+    ::close(fds[0]);
+    run_child(fds[1], path, read_path, opt);
+  }
+  ::close(fds[1]);
+
+  using Clock = std::chrono::steady_clock;
+  const auto deadline = Clock::now() + std::chrono::duration<double>(opt.time_limit_seconds);
+  std::string bytes;
+  bool timed_out = false;
+  char buf[1 << 16];
+  for (;;) {
+    int wait_ms = -1;
+    if (opt.time_limit_seconds > 0) {
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+      if (left <= 0) {
+        timed_out = true;
+        break;
+      }
+      wait_ms = int(std::min<long long>(left, 1 << 30));
+    }
+    pollfd p{fds[0], POLLIN, 0};
+    const int r = ::poll(&p, 1, wait_ms);
+    if (r < 0 && errno == EINTR) continue;
+    if (r == 0) continue;  // re-check the deadline
+    const ssize_t n = ::read(fds[0], buf, sizeof buf);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;  // end of file: the child is done (or dead)
+    bytes.append(buf, size_t(n));
+  }
+  ::close(fds[0]);
+  if (timed_out) ::kill(pid, SIGKILL);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+
+  const std::string format = " (format: " + format_name(path) + ")";
+  if (timed_out)
+    throw fail("the reader took longer than " + std::to_string(int(opt.time_limit_seconds)) + " s reading it" + format);
+  const std::string limit = opt.memory_limit_mb ? " (limit " + std::to_string(opt.memory_limit_mb) + " MB)" : "";
+  if (!bytes.empty() && bytes[0] == kOutOfMemory) throw fail("the reader ran out of memory" + limit + " reading it" + format);
+  if (WIFSIGNALED(status)) {
+    const int sig = WTERMSIG(status);
+    const char* name = sigabbrev_np(sig);
+    throw fail(std::string("the reader crashed (SIG") + (name ? name : std::to_string(sig).c_str()) + ") reading it" +
+               format);
+  }
+  if (bytes.empty() || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw fail("the reader stopped without a result reading it" + format);
+  if (bytes[0] == kError) throw IOError(bytes.substr(1));  // the child's message already names the file
+  if (bytes[0] != kOk) throw fail("the reader sent an unreadable result" + format);
+  ImportReport rep;
+  load_import(bytes.substr(1), mesh, rep);
+  return rep;
+}
+
+}  // namespace OpenMeshSkinned
