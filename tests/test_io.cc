@@ -214,26 +214,27 @@ TEST(Import, BadWeightsInAFileAreRefused) {
   EXPECT_NE(zero.find("zero.gltf"), std::string::npos) << "all-zero weights accepted";
   EXPECT_NE(zero.find("sum to 0"), std::string::npos) << zero;
 
-  // assimp's glTF reader drops NaN weights and zeroes negative ones before we see them, so what reaches
-  // us is a sum that is not 1: strict mode refuses it, the default rescales it and says so.
+  // assimp's glTF reader would drop NaN weights and zero negative ones before we see them: refused first.
   const auto neg = skinned_quad_gltf({1.5f, -0.5f, 0, 0}, scratch("neg.gltf"));
   const auto nan = skinned_quad_gltf({std::nanf(""), 0.5f, 0, 0}, scratch("nan.gltf"));
+  EXPECT_NE(import_error(neg).find("has a negative weight in WEIGHTS_0"), std::string::npos) << import_error(neg);
+  EXPECT_NE(import_error(nan).find("has a non-finite weight in WEIGHTS_0"), std::string::npos) << import_error(nan);
+
+  // Sums off 1 (raw FBX deformers): strict mode refuses them, the default rescales them and says so.
+  const auto off = skinned_quad_gltf({0.5f, 0.3f, 0, 0}, scratch("off.gltf"));
   ImportOptions strict;
   strict.normalize_weights = false;
-  for (const auto& path : {neg, nan}) {
-    SCOPED_TRACE(path);
-    Mesh mesh;
-    try {
-      import_skinned(path, mesh, strict);
-      ADD_FAILURE() << "strict import accepted weights that do not sum to 1";
-    } catch (const IOError& e) {
-      EXPECT_NE(std::string(e.what()).find("sum to"), std::string::npos) << e.what();
-    }
-    const auto rep = import_skinned(path, mesh);
-    EXPECT_EQ(rep.renormalized_vertices, 1u);
-    ASSERT_FALSE(rep.warnings.empty());
-    EXPECT_NE(rep.warnings.back().find("rescaled"), std::string::npos);
+  Mesh mesh;
+  try {
+    import_skinned(off, mesh, strict);
+    ADD_FAILURE() << "strict import accepted weights that do not sum to 1";
+  } catch (const IOError& e) {
+    EXPECT_NE(std::string(e.what()).find("sum to"), std::string::npos) << e.what();
   }
+  const auto rep = import_skinned(off, mesh);
+  EXPECT_EQ(rep.renormalized_vertices, 1u);
+  ASSERT_FALSE(rep.warnings.empty());
+  EXPECT_NE(rep.warnings.back().find("rescaled"), std::string::npos);
 }
 
 TEST(Export, RefusesBadTargetsAndLeavesNothingBehind) {
