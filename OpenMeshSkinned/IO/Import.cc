@@ -1,9 +1,11 @@
 #include "OpenMeshSkinned/IO/Import.hh"
 
 #include "OpenMeshSkinned/IO/GltfRepair.hh"
+#include "OpenMeshSkinned/IO/GltfValueCheck.hh"
+#include "OpenMeshSkinned/IO/ImportMaterial.hh"
 #include "OpenMeshSkinned/IO/IsolatedImport.hh"
 #include "OpenMeshSkinned/IO/ReaderLog.hh"
-#include "OpenMeshSkinned/IO/Textures.hh"
+#include "OpenMeshSkinned/Mesh/NonManifold.hh"
 #include "OpenMeshSkinned/Skin/Morph.hh"
 
 #include "OpenMeshSkinned/Skin/SkinProperties.hh"
@@ -80,134 +82,6 @@ struct SceneNodes {
   }
 };
 
-Material read_material(const aiScene* scene, const aiMaterial* m, const std::string& source_dir,
-                       std::vector<std::string>& warnings) {
-  Material out;
-  aiString name;
-  if (m->Get(AI_MATKEY_NAME, name) == AI_SUCCESS) out.name = name.C_Str();
-  aiColor4D c;
-  if (m->Get(AI_MATKEY_BASE_COLOR, c) == AI_SUCCESS || m->Get(AI_MATKEY_COLOR_DIFFUSE, c) == AI_SUCCESS) {
-    out.base_color[0] = c.r;
-    out.base_color[1] = c.g;
-    out.base_color[2] = c.b;
-    out.base_color[3] = c.a;
-  }
-  aiString tex;
-  if ((m->GetTexture(aiTextureType_BASE_COLOR, 0, &tex) != AI_SUCCESS &&
-       m->GetTexture(aiTextureType_DIFFUSE, 0, &tex) != AI_SUCCESS) ||
-      tex.length == 0)
-    return out;
-  out.base_color_texture = tex.C_Str();
-  std::string problem;
-  bool ok = false;
-  // Embedded ("*N", or a file name FBX and GLB files carry inside themselves) before files beside the source.
-  if (const aiTexture* et = scene->GetEmbeddedTexture(tex.C_Str())) {
-    const std::string name = et->mFilename.length ? et->mFilename.C_Str() : out.base_color_texture;
-    if (et->mHeight == 0) {
-      const auto* b = reinterpret_cast<const unsigned char*>(et->pcData);
-      ok = encode_for_gltf(std::vector<unsigned char>(b, b + et->mWidth), name, out.base_color_image, problem);
-    } else {
-      std::vector<unsigned char> rgba(size_t(et->mWidth) * et->mHeight * 4);
-      for (size_t i = 0; i < size_t(et->mWidth) * et->mHeight; ++i) {
-        const aiTexel& t = et->pcData[i];
-        rgba[4 * i] = t.r, rgba[4 * i + 1] = t.g, rgba[4 * i + 2] = t.b, rgba[4 * i + 3] = t.a;
-      }
-      ok = encode_rgba_png(rgba.data(), et->mWidth, et->mHeight, name, out.base_color_image);
-      if (!ok) problem = "could not be encoded as PNG";
-    }
-  } else {
-    ok = read_texture_file(out.base_color_texture, source_dir, out.base_color_image, problem);
-  }
-  if (!ok) {
-    out.base_color_image = {};
-    warnings.push_back("texture \"" + out.base_color_texture + "\" of material \"" + out.name + "\" " + problem +
-                       ": the material is kept without it");
-  }
-  return out;
-}
-
-// A new vertex with \p vh's position, skin and morph offsets. (Copies first: add_vertex may reallocate
-// the arrays a reference into them would point at.)
-SkinnedMesh::VertexHandle copy_vertex(SkinnedMesh& mesh, SkinnedMesh::VertexHandle vh) {
-  const auto h_inf = influences_handle(mesh);
-  const SkinnedMesh::Point p = mesh.point(vh);
-  const Influences inf = mesh.property(h_inf, vh);
-  const auto copy = mesh.add_vertex(p);
-  mesh.property(h_inf, copy) = inf;
-  OpenMesh::VPropHandleT<MorphDeltas> hd;
-  if (morph_deltas_handle(mesh, hd)) {
-    MorphDeltas d = mesh.property(hd, vh);
-    mesh.property(hd, copy) = std::move(d);
-  }
-  return copy;
-}
-
-// A vertex where several face fans meet (OpenMesh accepts it, but its circulators see one fan only and
-// the decimater would treat it as a boundary) gets one copy per extra fan, as OpenMesh's readers do for
-// complex edges. Returns the number of copies.
-size_t split_nonmanifold_vertices(SkinnedMesh& mesh, OpenMesh::FPropHandleT<int> h_fmat) {
-  size_t copies = 0;
-  std::vector<std::vector<SkinnedMesh::FaceHandle>> faces_of(mesh.n_vertices());
-  for (auto fh : mesh.faces())
-    for (auto vh : mesh.fv_range(fh)) faces_of[vh.idx()].push_back(fh);
-  struct Corner {
-    SkinnedMesh::VertexHandle v;
-    SkinnedMesh::Normal n;
-    SkinnedMesh::TexCoord2D t;
-  };
-  for (size_t vi = 0; vi < faces_of.size(); ++vi) {
-    const SkinnedMesh::VertexHandle vh(static_cast<int>(vi));
-    if (mesh.status(vh).deleted() || mesh.is_manifold(vh)) continue;
-    // Circulating the outgoing halfedges walks fan after fan; a boundary halfedge (no face) separates two.
-    std::vector<SkinnedMesh::HalfedgeHandle> out;
-    for (auto heh : mesh.voh_range(vh)) out.push_back(heh);
-    const auto first_gap = std::find_if(out.begin(), out.end(), [&](auto h) { return mesh.is_boundary(h); });
-    if (first_gap == out.end()) continue;
-    std::rotate(out.begin(), first_gap, out.end());
-    std::vector<std::vector<SkinnedMesh::FaceHandle>> fans;
-    for (auto heh : out) {
-      if (mesh.is_boundary(heh)) {
-        fans.emplace_back();
-        continue;
-      }
-      fans.back().push_back(mesh.face_handle(heh));
-    }
-    fans.erase(std::remove_if(fans.begin(), fans.end(), [](const auto& f) { return f.empty(); }), fans.end());
-    for (size_t fi = 1; fi < fans.size(); ++fi) {
-    const std::vector<SkinnedMesh::FaceHandle>& others = fans[fi];
-    const auto copy = copy_vertex(mesh, vh);
-    ++copies;
-    for (auto fh : others) {
-      std::vector<Corner> corners;
-      for (auto heh : mesh.fh_range(fh)) {
-        const SkinnedMesh::VertexHandle to = mesh.to_vertex_handle(heh);
-        corners.push_back({to == vh ? SkinnedMesh::VertexHandle(copy) : to, mesh.normal(heh), mesh.texcoord2D(heh)});
-      }
-      const int mat = mesh.property(h_fmat, fh);
-      mesh.delete_face(fh, false);
-      auto nf = mesh.add_face(corners[0].v, corners[1].v, corners[2].v);
-      if (!nf.is_valid()) {
-        for (Corner& c : corners) {
-          c.v = copy_vertex(mesh, c.v);
-          ++copies;
-        }
-        nf = mesh.add_face(corners[0].v, corners[1].v, corners[2].v);
-      }
-      faces_of.resize(mesh.n_vertices());
-      mesh.property(h_fmat, nf) = mat;
-      for (auto heh : mesh.fh_range(nf))
-        for (const Corner& c : corners)
-          if (c.v == mesh.to_vertex_handle(heh)) {
-            mesh.set_normal(heh, c.n);
-            mesh.set_texcoord2D(heh, c.t);
-          }
-      for (const Corner& c : corners) faces_of[c.v.idx()].push_back(nf);
-    }
-    }
-  }
-  return copies;
-}
-
 }  // namespace
 
 ImportReport import_skinned(const std::string& path, SkinnedMesh& mesh, const ImportOptions& opt) {
@@ -227,6 +101,7 @@ ImportReport detail::import_scene(const std::string& path, const std::string& re
                                   const ImportOptions& opt) {
   namespace fs = std::filesystem;
   auto fail = [&path](const std::string& what) -> IOError { return IOError(path + ": " + what); };
+  check_gltf_weights(read_path, path);
   const ReaderLog log;
   Assimp::Importer importer;
   // No PreTransformVertices or OptimizeGraph: both would destroy the skeleton we need.

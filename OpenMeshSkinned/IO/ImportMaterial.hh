@@ -1,0 +1,22 @@
+#pragma once
+/** \file ImportMaterial.hh
+ *  An assimp material as the exporter needs it: name, base colour and the base-colour image's bytes
+ *  (embedded in the file, or read from beside it). Used by import_skinned().
+ */
+
+#include "OpenMeshSkinned/Skin/Skeleton.hh"
+
+#include <string>
+#include <vector>
+
+struct aiScene;
+struct aiMaterial;
+
+namespace OpenMeshSkinned {
+
+/// Reads \p m of \p scene; a texture that cannot be found or read adds a line to \p warnings and the
+/// material is kept without it. \p source_dir is the folder of the file being read.
+Material read_material(const aiScene* scene, const aiMaterial* m, const std::string& source_dir,
+                       std::vector<std::string>& warnings);
+
+}  // namespace OpenMeshSkinned
