@@ -78,6 +78,7 @@ def main():
         # resources a text format refers to (simple_skin embeds its buffers; the X files their textures)
         jobs.append((i, m, os.path.relpath(path, MODELS)))
     summary = {}
+    caught = {}  # refusals by the isolated reader, by kind
     failures = []
     t0 = time.time()
     with cf.ThreadPoolExecutor(args.jobs) as ex:
@@ -87,6 +88,9 @@ def main():
             outcome, code, msg, secs = fut.result()
             s = summary.setdefault(src, {})
             s[outcome] = s.get(outcome, 0) + 1
+            for kind in ("the reader crashed", "the reader ran out of memory", "the reader took longer"):
+                if kind in msg:
+                    caught[kind] = caught.get(kind, 0) + 1
             if outcome in ("crash", "hang", "bad-message"):
                 dst = os.path.join(args.out, "failures", os.path.basename(m))
                 shutil.copy(m, dst)
@@ -99,10 +103,10 @@ def main():
         for k, v in s.items():
             total[k] = total.get(k, 0) + v
     result = {"count": args.count, "seed": args.seed, "cli_args": args.extra_args, "seconds": round(time.time() - t0, 1),
-              "total": total, "per_seed_file": summary, "failures": failures}
+              "total": total, "isolated_reader_refusals": caught, "per_seed_file": summary, "failures": failures}
     with open(os.path.join(args.out, "summary.json"), "w") as f:
         json.dump(result, f, indent=2)
-    print(json.dumps({"total": total, "seconds": result["seconds"]}))
+    print(json.dumps({"total": total, "isolated_reader_refusals": caught, "seconds": result["seconds"]}))
     return 1 if failures else 0
 
 
