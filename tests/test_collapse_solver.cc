@@ -103,7 +103,9 @@ TEST(CollapseSolver, SinglePoseOptimumIsTheStaticQuadricOptimum) {
 TEST(CollapseSolver, ConstraintsHoldForEveryEdgeOfARealCharacter) {
   Mesh mesh = omsk_test::load_character("X/Testwuson.X", 6);
   CollapseSolverT<Mesh> solver(mesh);
-  solver.set_max_influences(3);
+  SolverSettings settings;
+  settings.max_influences = 3;
+  solver.set_settings(settings);
   solver.prepare();
   for (auto heh : mesh.halfedges()) {
     CI ci(mesh, heh);
@@ -122,7 +124,9 @@ TEST(CollapseSolver, ConstraintsHoldForEveryEdgeOfARealCharacter) {
 TEST(CollapseSolver, CacheIsInvalidatedWhenAnEndpointChanges) {
   Mesh mesh = two_joint_sheet(6, 0.5);
   CollapseSolverT<Mesh> solver(mesh);
-  solver.set_placement(true);
+  SolverSettings settings;
+  settings.placement = true;
+  solver.set_settings(settings);
   solver.prepare();
   const auto heh = interior_halfedge(mesh);
   CI ci(mesh, heh);

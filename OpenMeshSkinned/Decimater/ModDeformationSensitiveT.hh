@@ -1,9 +1,7 @@
 #pragma once
 /** \file ModDeformationSensitiveT.hh */
 
-#include "OpenMeshSkinned/Solver/CollapseSolverT.hh"
-
-#include <OpenMesh/Tools/Decimater/ModBaseT.hh>
+#include "OpenMeshSkinned/Decimater/SolverModuleT.hh"
 
 #include <cfloat>
 
@@ -17,41 +15,30 @@ namespace OpenMeshSkinned {
  *  times area.
  */
 template <typename MeshT>
-class ModDeformationSensitiveT : public OpenMesh::Decimater::ModBaseT<MeshT> {
+class ModDeformationSensitiveT : public SolverModuleT<MeshT> {
 public:
   DECIMATING_MODULE(ModDeformationSensitiveT, MeshT, DeformationSensitive);
 
-  explicit ModDeformationSensitiveT(MeshT& mesh) : Base(mesh, false) { solver_ = shared_solver(mesh, owns_property_); }
-  ~ModDeformationSensitiveT() override {
-    solver_->release_deferred();
-    if (owns_property_) release_shared_solver(Base::mesh());
-  }
+  explicit ModDeformationSensitiveT(MeshT& mesh) : SolverModuleT<MeshT>(mesh, false) {}
 
-  void initialize() override { solver_->prepare(); }
+  void set_max_err(double err) { max_err_ = err; }
+  double max_err() const { return max_err_; }
 
-  float collapse_priority(const CollapseInfo& ci) override {
-    solver_->begin_pricing(ci);
+protected:
+  float price(const CollapseInfo& ci) override {
+    const auto& solver = this->solver();
     double e = 0.0;
-    for (int j = 0; j < solver_->n_poses(); ++j) {
-      PoseQuadric q = solver_->quadric(ci.v0, j);
-      q += solver_->quadric(ci.v1, j);
-      e += q(solver_->posed(ci.v1, j));
+    for (int j = 0; j < solver.n_poses(); ++j) {
+      PoseQuadric q = solver.quadric(ci.v0, j);
+      q += solver.quadric(ci.v1, j);
+      e += q(solver.posed(ci.v1, j));
     }
     e = std::max(e, 0.0);
     if (e > max_err_ * Base::error_tolerance_factor_) return float(Base::ILLEGAL_COLLAPSE);
     return static_cast<float>(std::min<double>(e, FLT_MAX / 2));
   }
 
-  void preprocess_collapse(const CollapseInfo& ci) override { solver_->begin_collapse(ci); }
-  void postprocess_collapse(const CollapseInfo& ci) override { solver_->end_collapse(ci); }
-
-  void set_max_err(double err) { max_err_ = err; }
-  double max_err() const { return max_err_; }
-  CollapseSolverT<MeshT>& solver() { return *solver_; }
-
 private:
-  std::shared_ptr<CollapseSolverT<MeshT>> solver_;
-  bool owns_property_ = false;
   double max_err_ = DBL_MAX;
 };
 

@@ -1,9 +1,9 @@
 #pragma once
 /** \file ModSkinnedFoldOverT.hh */
 
-#include "OpenMeshSkinned/Solver/CollapseSolverT.hh"
+#include "OpenMeshSkinned/Decimater/SolverModuleT.hh"
 
-#include <OpenMesh/Tools/Decimater/ModBaseT.hh>
+#include <algorithm>
 
 #include <cmath>
 
@@ -28,37 +28,15 @@ namespace OpenMeshSkinned {
  *  \endcode
  */
 template <typename MeshT>
-class ModSkinnedFoldOverT : public OpenMesh::Decimater::ModBaseT<MeshT> {
+class ModSkinnedFoldOverT : public SolverModuleT<MeshT> {
 public:
   DECIMATING_MODULE(ModSkinnedFoldOverT, MeshT, SkinnedFoldOver);
 
-  explicit ModSkinnedFoldOverT(MeshT& mesh) : Base(mesh, true) {
-    solver_ = shared_solver(mesh, owns_property_);
-    set_max_angle(90.0);
-  }
-  ~ModSkinnedFoldOverT() override {
-    solver_->release_deferred();
-    if (owns_property_) release_shared_solver(Base::mesh());
-  }
+  explicit ModSkinnedFoldOverT(MeshT& mesh) : SolverModuleT<MeshT>(mesh, true) { update(); }
 
-  void initialize() override { solver_->prepare(); }
-
-  float collapse_priority(const CollapseInfo& ci) override {
-    solver_->begin_pricing(ci);
-    // Not the cheapest legal collapse from v0 anyway: the decimater will not pick it, skip the check.
-    if (solver_->cannot_win(ci)) return float(Base::LEGAL_COLLAPSE);
-    Eigen::Vector3d rest;
-    Influences w;
-    solver_->placement_of(ci, rest, w);
-    return solver_->flips(ci, rest, w, min_cos_) ? float(Base::ILLEGAL_COLLAPSE) : float(Base::LEGAL_COLLAPSE);
-  }
-
-  void preprocess_collapse(const CollapseInfo& ci) override { solver_->begin_collapse(ci); }
-  void postprocess_collapse(const CollapseInfo& ci) override { solver_->end_collapse(ci); }
-
-  /// Unlocks the vertices held back from the last decimate call (see CollapseSolverT); call between
+  /// Unlocks the vertices held back from the last decimate call (see StaleVerdictsT); call between
   /// successive decimate calls on the same decimater, e.g. when building a LOD chain.
-  void release_deferred() { solver_->release_deferred(); }
+  void release_deferred() { this->solver().release_deferred(); }
 
   /// Largest allowed rotation of a face normal by one collapse, in degrees, in any pose (0..180].
   void set_max_angle(double deg) {
@@ -74,18 +52,27 @@ public:
     }
   }
 
-  /// The shared solver: settings and counters (forced_flips, deferred).
-  CollapseSolverT<MeshT>& solver() { return *solver_; }
+protected:
+  float price(const CollapseInfo& ci) override {
+    // Not the cheapest legal collapse from v0 anyway: the decimater will not pick it, skip the check.
+    if (this->solver().cannot_win(ci)) return float(Base::LEGAL_COLLAPSE);
+    Eigen::Vector3d rest;
+    Influences w;
+    this->solver().placement_of(ci, rest, w);
+    return this->solver().flips(ci, rest, w, min_cos_) ? float(Base::ILLEGAL_COLLAPSE) : float(Base::LEGAL_COLLAPSE);
+  }
+  void contribute(SolverSettings& s, EdgeModelT<MeshT>*&) const override {
+    // With several fold-over modules the strictest wins.
+    s.fold_cos = s.fold_check ? std::max(s.fold_cos, min_cos_) : min_cos_;
+    s.fold_check = true;
+  }
 
 private:
   void update() {
-    const double rad = max_angle_deg_ * Base::error_tolerance_factor_ * M_PI / 180.0;
-    min_cos_ = std::cos(rad);
-    solver_->set_fold_over_angle(rad);
+    min_cos_ = std::cos(max_angle_deg_ * Base::error_tolerance_factor_ * M_PI / 180.0);
+    this->settings_changed();
   }
 
-  std::shared_ptr<CollapseSolverT<MeshT>> solver_;
-  bool owns_property_ = false;
   double max_angle_deg_ = 90.0;
   double min_cos_ = 0.0;
 };

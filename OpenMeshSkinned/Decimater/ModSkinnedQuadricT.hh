@@ -1,10 +1,9 @@
 #pragma once
 /** \file ModSkinnedQuadricT.hh */
 
-#include "OpenMeshSkinned/Solver/CollapseSolverT.hh"
+#include "OpenMeshSkinned/Decimater/SolverModuleT.hh"
 
-#include <OpenMesh/Tools/Decimater/ModBaseT.hh>
-
+#include <algorithm>
 #include <cfloat>
 
 namespace OpenMeshSkinned {
@@ -29,33 +28,11 @@ namespace OpenMeshSkinned {
  *  \endcode
  */
 template <typename MeshT>
-class ModSkinnedQuadricT : public OpenMesh::Decimater::ModBaseT<MeshT> {
+class ModSkinnedQuadricT : public SolverModuleT<MeshT> {
 public:
   DECIMATING_MODULE(ModSkinnedQuadricT, MeshT, SkinnedQuadric);
 
-  explicit ModSkinnedQuadricT(MeshT& mesh) : Base(mesh, false) {
-    solver_ = shared_solver(mesh, owns_property_);
-    solver_->set_placement(true);
-  }
-  ~ModSkinnedQuadricT() override {
-    solver_->set_placement(false);
-    solver_->release_deferred();
-    if (owns_property_) release_shared_solver(Base::mesh());
-  }
-
-  void initialize() override { solver_->prepare(); }
-
-  float collapse_priority(const CollapseInfo& ci) override {
-    solver_->begin_pricing(ci);
-    const CollapseResult& r = solver_->solve(ci);
-    if (!r.valid) return float(Base::ILLEGAL_COLLAPSE);
-    if (r.error > max_err_ * Base::error_tolerance_factor_) return float(Base::ILLEGAL_COLLAPSE);
-    solver_->note_legal_priority(ci, r.error);
-    return static_cast<float>(std::min<double>(r.error, FLT_MAX / 2));
-  }
-
-  void preprocess_collapse(const CollapseInfo& ci) override { solver_->begin_collapse(ci); }
-  void postprocess_collapse(const CollapseInfo& ci) override { solver_->end_collapse(ci); }
+  explicit ModSkinnedQuadricT(MeshT& mesh) : SolverModuleT<MeshT>(mesh, false) { this->settings_changed(); }
 
   /// Collapses whose error exceeds \p err (length^4 units, see class docs) are refused. Default: none.
   void set_max_err(double err) { max_err_ = err; }
@@ -63,16 +40,28 @@ public:
   void unset_max_err() { max_err_ = DBL_MAX; }
 
   /// Alternations of vertex and weight solves per edge at most (default 8; the error rarely falls after).
-  void set_max_iterations(int n) { solver_->set_max_iterations(n); }
-  int max_iterations() const { return solver_->max_iterations(); }
+  void set_max_iterations(int n) {
+    max_iterations_ = std::max(1, n);
+    this->settings_changed();
+  }
+  int max_iterations() const { return max_iterations_; }
 
-  /// The shared solver: settings, counters (solves, cache hits, Ceres calls).
-  CollapseSolverT<MeshT>& solver() { return *solver_; }
+protected:
+  float price(const CollapseInfo& ci) override {
+    const CollapseResult& r = this->solver().solve(ci);
+    if (!r.valid) return float(Base::ILLEGAL_COLLAPSE);
+    if (r.error > max_err_ * Base::error_tolerance_factor_) return float(Base::ILLEGAL_COLLAPSE);
+    this->solver().note_legal_priority(ci, r.error);
+    return static_cast<float>(std::min<double>(r.error, FLT_MAX / 2));
+  }
+  void contribute(SolverSettings& s, EdgeModelT<MeshT>*&) const override {
+    s.placement = true;
+    s.max_iterations = max_iterations_;
+  }
 
 private:
-  std::shared_ptr<CollapseSolverT<MeshT>> solver_;
-  bool owns_property_ = false;
   double max_err_ = DBL_MAX;
+  int max_iterations_ = SolveSettings{}.max_iterations;
 };
 
 }  // namespace OpenMeshSkinned

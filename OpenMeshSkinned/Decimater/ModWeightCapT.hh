@@ -1,9 +1,9 @@
 #pragma once
 /** \file ModWeightCapT.hh */
 
-#include "OpenMeshSkinned/Solver/CollapseSolverT.hh"
+#include "OpenMeshSkinned/Decimater/SolverModuleT.hh"
 
-#include <OpenMesh/Tools/Decimater/ModBaseT.hh>
+#include <algorithm>
 
 namespace OpenMeshSkinned {
 
@@ -22,44 +22,31 @@ namespace OpenMeshSkinned {
  *  \endcode
  */
 template <typename MeshT>
-class ModWeightCapT : public OpenMesh::Decimater::ModBaseT<MeshT> {
+class ModWeightCapT : public SolverModuleT<MeshT> {
 public:
   DECIMATING_MODULE(ModWeightCapT, MeshT, WeightCap);
 
-  explicit ModWeightCapT(MeshT& mesh) : Base(mesh, true) {
-    solver_ = shared_solver(mesh, owns_property_);
-    solver_->set_max_influences(4);
-  }
-  ~ModWeightCapT() override {
-    solver_->set_max_influences(Influences::kCapacity);
-    solver_->release_deferred();
-    if (owns_property_) release_shared_solver(Base::mesh());
-  }
+  explicit ModWeightCapT(MeshT& mesh) : SolverModuleT<MeshT>(mesh, true) { this->settings_changed(); }
 
   void initialize() override {
-    solver_->prepare();
-    reduced_ = reduce_input_ ? solver_->reduce_input_influences() : 0;
+    SolverModuleT<MeshT>::initialize();
+    reduced_ = reduce_input_ ? this->solver().reduce_input_influences() : 0;
   }
-
-  float collapse_priority(const CollapseInfo& ci) override {
-    solver_->begin_pricing(ci);
-    Eigen::Vector3d rest;
-    Influences w;
-    solver_->placement_of(ci, rest, w);
-    return w.size() <= solver_->max_influences() ? float(Base::LEGAL_COLLAPSE) : float(Base::ILLEGAL_COLLAPSE);
-  }
-
-  void preprocess_collapse(const CollapseInfo& ci) override { solver_->begin_collapse(ci); }
-  void postprocess_collapse(const CollapseInfo& ci) override { solver_->end_collapse(ci); }
 
   /// Most influences per vertex, 1..Influences::kCapacity (default 4).
-  void set_max_influences(int n) { solver_->set_max_influences(n); }
-  int max_influences() const { return solver_->max_influences(); }
+  void set_max_influences(int n) {
+    max_influences_ = std::clamp(n, 1, Influences::kCapacity);
+    this->settings_changed();
+  }
+  int max_influences() const { return max_influences_; }
 
   /// How the cap is met when the optimum uses more joints (default CapStrategy::TopN, the paper's; it kept
   /// the posed surface closer than Greedy on the real test characters, see bench/README.md).
-  void set_strategy(CapStrategy s) { solver_->set_cap_strategy(s); }
-  CapStrategy strategy() const { return solver_->cap_strategy(); }
+  void set_strategy(CapStrategy s) {
+    strategy_ = s;
+    this->settings_changed();
+  }
+  CapStrategy strategy() const { return strategy_; }
 
   /// Whether initialize() reduces input vertices above the cap (default true).
   void set_reduce_input(bool on) { reduce_input_ = on; }
@@ -68,12 +55,21 @@ public:
   /// Input vertices reduced by the last initialize().
   size_t reduced_vertices() const { return reduced_; }
 
-  /// The shared solver: settings and counters.
-  CollapseSolverT<MeshT>& solver() { return *solver_; }
+protected:
+  float price(const CollapseInfo& ci) override {
+    Eigen::Vector3d rest;
+    Influences w;
+    this->solver().placement_of(ci, rest, w);
+    return w.size() <= max_influences_ ? float(Base::LEGAL_COLLAPSE) : float(Base::ILLEGAL_COLLAPSE);
+  }
+  void contribute(SolverSettings& s, EdgeModelT<MeshT>*&) const override {
+    s.max_influences = std::min(s.max_influences, max_influences_);
+    s.strategy = strategy_;
+  }
 
 private:
-  std::shared_ptr<CollapseSolverT<MeshT>> solver_;
-  bool owns_property_ = false;
+  int max_influences_ = 4;
+  CapStrategy strategy_ = SolveSettings{}.strategy;
   bool reduce_input_ = true;
   size_t reduced_ = 0;
 };

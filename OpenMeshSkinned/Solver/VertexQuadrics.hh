@@ -5,8 +5,7 @@
  */
 
 #include "OpenMeshSkinned/Solver/PoseQuadric.hh"
-
-#include <Eigen/Eigenvalues>
+#include "OpenMeshSkinned/Solver/TruncatedSolve.hh"
 
 namespace OpenMeshSkinned {
 
@@ -51,7 +50,7 @@ void accumulate_quadrics(const Mesh& mesh, int n_poses, Pos pos, Quadric quadric
 }
 
 /** The point minimising the static quadric \p q for the edge (pa, pb): directions the quadric barely
- *  constrains (eigenvalues below 1e-3 of the largest) stay at the midpoint, a minimiser further than one
+ *  constrains stay at the midpoint (truncated_solve()), a minimiser further than one
  *  edge length from the midpoint is refused, and the endpoints and midpoint compete with it. */
 inline Eigen::Vector3d optimal_point(const PoseQuadric& q, const Eigen::Vector3d& pa, const Eigen::Vector3d& pb) {
   const Eigen::Vector3d mid = 0.5 * (pa + pb);
@@ -62,16 +61,8 @@ inline Eigen::Vector3d optimal_point(const PoseQuadric& q, const Eigen::Vector3d
       be = q(c);
       best = c;
     }
-  const Eigen::Matrix3d A = q.A();
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
-  es.computeDirect(A);
-  const Eigen::Vector3d ev = es.eigenvalues();
-  if (!(ev[2] > 0.0)) return best;
-  const Eigen::Vector3d r = es.eigenvectors().transpose() * (-q.b() - A * mid);
-  Eigen::Vector3d d = Eigen::Vector3d::Zero();
-  for (int i = 0; i < 3; ++i)
-    if (ev[i] > 1e-3 * ev[2]) d[i] = r[i] / ev[i];
-  const Eigen::Vector3d v = mid + es.eigenvectors() * d;
+  Eigen::Vector3d v;
+  if (!truncated_solve(q.A(), -q.b(), mid, v)) return best;
   if (v.allFinite() && (v - mid).squaredNorm() <= (pa - pb).squaredNorm() && q(v) < be) best = v;
   return best;
 }

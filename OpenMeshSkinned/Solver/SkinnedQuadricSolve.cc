@@ -1,0 +1,173 @@
+#include "OpenMeshSkinned/Solver/SkinnedQuadricSolve.hh"
+
+#include "OpenMeshSkinned/Solver/TruncatedSolve.hh"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace OpenMeshSkinned {
+
+namespace {
+
+// How far (in edge lengths) from the edge's midpoint a solved position may lie.
+constexpr double kMaxReach = 1.0;
+
+int count_nonzero(const WeightSolver::Vector& a) { return static_cast<int>((a.array() > 0.0).count()); }
+
+// The vertex step, then the best of it, the endpoints and the midpoint: the truncated solve is the
+// optimum only along the constrained directions, and a fully singular system has no solve at all.
+Eigen::Vector3d place(const EdgeProblem& p, const WeightSolver::Vector& a) {
+  const Eigen::Vector3d mid = 0.5 * (p.pa + p.pb);
+  Eigen::Vector3d cand[4] = {mid, p.pa, p.pb, mid};
+  bool full_rank = false;
+  int n = skinned_vertex_step(p, a, mid, cand[3], full_rank) ? 4 : 3;
+  // A thin part (a tail, a finger) has quadrics whose minimum lies far along its axis: the error keeps
+  // falling a little as the vertex slides out of the mesh. Optima more than an edge length beyond the
+  // edge's midpoint are such valleys, not features: keep to the endpoints and the midpoint there.
+  if (n == 4 && (cand[3] - mid).squaredNorm() > kMaxReach * kMaxReach * (p.pa - p.pb).squaredNorm()) n = 3;
+  if (n == 4 && full_rank) return cand[3];  // the exact minimiser: nothing can beat it
+  int best = 0;
+  double be = skinned_energy(p, cand[0], a);
+  for (int i = 1; i < n; ++i) {
+    const double ei = skinned_energy(p, cand[i], a);
+    if (ei < be) {
+      be = ei;
+      best = i;
+    }
+  }
+  return cand[best];
+}
+
+// Alternating minimisation (paper 3.1/3.2); each half-step cannot increase E, so stop when it stalls.
+double alternate(const EdgeProblem& p, const SolveSettings& s, WeightSolver& weights, int cap, WeightSolver::Vector& a,
+                 Eigen::Vector3d& v) {
+  WeightSolver::Matrix H;
+  double e_prev = std::numeric_limits<double>::infinity();
+  double e = e_prev;
+  for (int it = 0; it < std::max(1, s.max_iterations); ++it) {
+    v = place(p, a);
+    if (p.support == 1) return skinned_energy(p, v, a);
+    skinned_weight_matrix(p, v, H);
+    e = cap < p.support ? weights.solve_capped(H, p.start, cap, s.strategy, a) : weights.solve(H, p.start, a);
+    if (!(e < e_prev * (1.0 - 1e-4))) break;
+    e_prev = e;
+  }
+  return skinned_energy(p, v, a);
+}
+
+// As alternate(), with the weights restricted to their current support.
+double alternate_fixed_support(const EdgeProblem& p, const SolveSettings& s, WeightSolver& weights,
+                               WeightSolver::Vector& a, Eigen::Vector3d& v) {
+  Eigen::Matrix<bool, Eigen::Dynamic, 1, 0, WeightSolver::kMaxJoints, 1> active(p.support);
+  for (int k = 0; k < p.support; ++k) active[k] = a[k] > 0.0;
+  WeightSolver::Matrix H;
+  double e_prev = std::numeric_limits<double>::infinity();
+  for (int it = 0; it < std::max(1, s.max_iterations); ++it) {
+    v = place(p, a);
+    skinned_weight_matrix(p, v, H);
+    const double e = weights.solve(H, p.start, a, &active);
+    if (!(e < e_prev * (1.0 - 1e-4))) break;
+    e_prev = e;
+  }
+  return skinned_energy(p, v, a);
+}
+
+Influences to_influences(const EdgeProblem& p, const WeightSolver::Vector& a) {
+  Influences out;
+  for (int k = 0; k < p.support; ++k)
+    if (a[k] > 0.0) out.push(p.joint[k], a[k]);
+  out.normalize();
+  out.sort();
+  return out;
+}
+
+}  // namespace
+
+void EdgeProblem::set_skins(const Influences& wa, const Influences& wb) {
+  support = 0;
+  for (const JointWeight& jw : wa) joint[support++] = jw.joint;
+  for (const JointWeight& jw : wb)
+    if (std::find(joint.begin(), joint.begin() + support, jw.joint) == joint.begin() + support) joint[support++] = jw.joint;
+  start.resize(support);
+  for (int k = 0; k < support; ++k) start[k] = 0.5 * (wa.weight_of(joint[k]) + wb.weight_of(joint[k]));
+}
+
+void EdgeProblem::resize(int n) {
+  poses = n;
+  quadric.resize(n);
+  transform.resize(static_cast<size_t>(n) * kMaxSupport);
+}
+
+void EdgeProblem::set_pose(int j, const Pose& pose) {
+  for (int k = 0; k < support; ++k) transform[j * kMaxSupport + k] = pose.joint[joint[k]];
+}
+
+double skinned_energy(const EdgeProblem& p, const Eigen::Vector3d& v, const WeightSolver::Vector& a) {
+  double e = 0.0;
+  for (int j = 0; j < p.poses; ++j) {
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for (int k = 0; k < p.support; ++k) x += a[k] * (p.M(j, k) * v.homogeneous());
+    e += p.quadric[j](x);
+  }
+  return std::max(e, 0.0);
+}
+
+bool skinned_vertex_step(const EdgeProblem& p, const WeightSolver::Vector& a, const Eigen::Vector3d& ref,
+                         Eigen::Vector3d& v, bool& full_rank) {
+  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+  for (int j = 0; j < p.poses; ++j) {
+    Affine3 B = Affine3::Zero();
+    for (int k = 0; k < p.support; ++k) B += a[k] * p.M(j, k);
+    const Eigen::Matrix3d R = B.leftCols<3>();
+    const Eigen::Vector3d t = B.col(3);
+    const Eigen::Matrix3d Aj = p.quadric[j].A();
+    A += R.transpose() * Aj * R;
+    rhs -= R.transpose() * (Aj * t + p.quadric[j].b());
+  }
+  full_rank = false;
+  if (!truncated_solve(A, rhs, ref, v, &full_rank)) return false;
+  return v.allFinite();
+}
+
+void skinned_weight_matrix(const EdgeProblem& p, const Eigen::Vector3d& v, WeightSolver::Matrix& H) {
+  const int m = p.support;
+  H.setZero(m, m);
+  Eigen::Matrix<double, 4, Eigen::Dynamic, 0, 4, WeightSolver::kMaxJoints> V(4, m);
+  for (int j = 0; j < p.poses; ++j) {
+    for (int k = 0; k < m; ++k) {
+      V.col(k).head<3>() = p.M(j, k) * v.homogeneous();
+      V(3, k) = 1.0;
+    }
+    const Eigen::Matrix4d Q = p.quadric[j].matrix();
+    H.noalias() += V.transpose() * Q * V;
+  }
+}
+
+void solve_collapse(const EdgeProblem& p, const SolveSettings& s, WeightSolver& weights, CollapseResult& out) {
+  WeightSolver::Vector a = p.start;
+  Eigen::Vector3d v;
+  double e = alternate(p, s, weights, p.support > 1 ? Influences::kCapacity : 1, a, v);
+  if (count_nonzero(a) > s.max_influences) {
+    // Cap after the free optimum (paper 3.2), then optimise again on the kept joints only.
+    WeightSolver::Matrix H;
+    skinned_weight_matrix(p, v, H);
+    weights.solve_capped(H, p.start, s.max_influences, s.strategy, a);
+    e = alternate_fixed_support(p, s, weights, a, v);
+  }
+  out.valid = v.allFinite() && std::isfinite(e);
+  out.position = v;
+  out.error = e;
+  out.weights = to_influences(p, a);
+}
+
+Influences reduce_influences(const EdgeProblem& p, const SolveSettings& s, WeightSolver& weights) {
+  WeightSolver::Vector a(p.support);
+  WeightSolver::Matrix H;
+  skinned_weight_matrix(p, p.pa, H);
+  weights.solve_capped(H, p.start, s.max_influences, s.strategy, a);
+  return to_influences(p, a);
+}
+
+}  // namespace OpenMeshSkinned

@@ -1,0 +1,86 @@
+#pragma once
+/** \file SkinnedQuadricSolve.hh
+ *  The maths of one collapse, without a mesh: Landreneau & Schaefer's quartic error (eq. 3)
+ *
+ *      E(v, a) = sum_poses (sum_k a_k M_k v)^T Q (sum_k a_k M_k v)
+ *
+ *  minimised over the rest position v and the weights a (support: the endpoints' joints) by alternating
+ *  the 3x3 vertex solve (3.1) and the constrained weight solve (3.2, WeightSolver), starting from the
+ *  endpoints' average weights, until the error stops falling.
+ *
+ *  Everything the solve reads is in the EdgeProblem it is given; the mesh-facing solver (CollapseSolverT)
+ *  only fills problems and applies results. The same kernel reduces a single vertex to the cap.
+ */
+
+#include "OpenMeshSkinned/Skin/Influences.hh"
+#include "OpenMeshSkinned/Skin/Skeleton.hh"
+#include "OpenMeshSkinned/Solver/PoseQuadric.hh"
+#include "OpenMeshSkinned/Solver/WeightSolver.hh"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <vector>
+
+namespace OpenMeshSkinned {
+
+/// The solver's answer for one edge.
+struct CollapseResult {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< rest-pose position of the merged vertex
+  Influences weights;                                 ///< its skin, within the cap
+  double error = 0.0;                                 ///< quartic error E(position, weights), >= 0
+  bool valid = false;                                 ///< false when the solve produced nothing finite
+};
+
+/// The settings the kernel reads (the rest of SolverSettings is the mesh-facing solver's).
+struct SolveSettings {
+  int max_influences = Influences::kCapacity;
+  // TopN measured better on real characters (bench/README.md, cap-strategy workload).
+  CapStrategy strategy = CapStrategy::TopN;
+  int max_iterations = 8;
+};
+
+/** One edge (or one vertex, with a == b) as the kernel sees it. Reused between solves: its vectors keep
+ *  their capacity, so filling a problem does not allocate once they have grown to the pose count. */
+struct EdgeProblem {
+  static constexpr int kMaxSupport = 2 * Influences::kCapacity;
+  static_assert(kMaxSupport <= WeightSolver::kMaxJoints, "the weight solve must hold both endpoints' joints");
+
+  int poses = 0;                          ///< P
+  int support = 0;                        ///< m, the joints the merged vertex may use
+  std::array<int, kMaxSupport> joint{};   ///< their skeleton indices
+  std::vector<PoseQuadric> quadric;       ///< per pose: the endpoints' quadrics, summed
+  std::vector<Affine3> transform;         ///< pose j, support joint k at [j * kMaxSupport + k]
+  Eigen::Vector3d pa = Eigen::Vector3d::Zero(), pb = Eigen::Vector3d::Zero();  ///< endpoints' rest positions
+  WeightSolver::Vector start;             ///< start weights on the support (the endpoints' average)
+
+  /// Sets the support to the union of \p wa's and \p wb's joints, and the start to their average weights.
+  void set_skins(const Influences& wa, const Influences& wb);
+  /// Sizes the per-pose arrays for \p n poses.
+  void resize(int n);
+  /// Copies the support joints' transforms of pose \p j from \p pose.
+  void set_pose(int j, const Pose& pose);
+
+  const Affine3& M(int j, int k) const { return transform[j * kMaxSupport + k]; }
+};
+
+/// E(v, a) of \p p.
+double skinned_energy(const EdgeProblem& p, const Eigen::Vector3d& v, const WeightSolver::Vector& a);
+
+/** The vertex step at fixed weights: sum_j B_j^T A_j B_j v = -sum_j B_j^T (A_j t_j + b_j), B_j the
+ *  blended matrix of pose j, solved by the truncated pseudo-inverse around \p ref. False when nothing is
+ *  constrained; \p full_rank tells whether every direction was. */
+bool skinned_vertex_step(const EdgeProblem& p, const WeightSolver::Vector& a, const Eigen::Vector3d& ref,
+                         Eigen::Vector3d& v, bool& full_rank);
+
+/// The weight Gram matrix at a fixed position: H = sum_j V_j^T Q_j V_j, V_j's columns [M_k v; 1].
+void skinned_weight_matrix(const EdgeProblem& p, const Eigen::Vector3d& v, WeightSolver::Matrix& H);
+
+/// The optimal merged vertex for \p p within \p s's cap.
+void solve_collapse(const EdgeProblem& p, const SolveSettings& s, WeightSolver& weights, CollapseResult& out);
+
+/** A vertex with more than s.max_influences joints, reduced by the weight solve on its own quadrics at
+ *  its own position (p.pa; the start holds its weights), not by truncation. */
+Influences reduce_influences(const EdgeProblem& p, const SolveSettings& s, WeightSolver& weights);
+
+}  // namespace OpenMeshSkinned

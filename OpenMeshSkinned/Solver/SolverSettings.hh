@@ -1,0 +1,27 @@
+#pragma once
+/** \file SolverSettings.hh
+ *  What the shared collapse solver does, as one value. With modules attached it is gathered from them
+ *  (SolverModuleT::contribute): each module owns its own parameters, and removing a module simply drops
+ *  its contribution, never another module's.
+ */
+
+#include "OpenMeshSkinned/Solver/SkinnedQuadricSolve.hh"
+
+namespace OpenMeshSkinned {
+
+struct SolverSettings : SolveSettings {
+  /// Whether the merged vertex takes the solved position and weights (a placing priority module asks for
+  /// it). Off, a collapse is OpenMesh's plain halfedge collapse: v1 keeps its position and skin.
+  bool placement = false;
+  /// Whether placements are checked for fold-overs at collapse time (ModSkinnedFoldOverT asks for it).
+  bool fold_check = false;
+  /// Smallest allowed cosine between a face's normals before and after a collapse, in every pose.
+  double fold_cos = 0.0;
+
+  /// Whether two settings give the same edge answers (the edge cache survives a change of the others).
+  bool same_answers(const SolverSettings& o) const {
+    return max_influences == o.max_influences && strategy == o.strategy && max_iterations == o.max_iterations;
+  }
+};
+
+}  // namespace OpenMeshSkinned
