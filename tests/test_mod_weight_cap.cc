@@ -36,7 +36,7 @@ TEST(ModWeightCap, ReducesInputVerticesAboveTheCapBySolvingNotTruncating) {
   // stays closer to the original than plain top-2-and-renormalise does.
   Mesh truncated = original;
   const auto h = influences_handle(truncated);
-  for (auto vh : truncated.vertices()) truncated.property(h, vh).truncate_and_normalize(2);
+  for (auto vh : truncated.vertices()) truncated.property(h, vh).keep_heaviest(2);
   double err_solved = 0.0, err_truncated = 0.0;
   for (const Pose& pose : example_poses(original)) {
     err_solved += omsk_test::posed_rms(original, mesh, pose);

@@ -211,8 +211,9 @@ void export_gltf(const SkinnedMesh& mesh, const std::string& path) {
 
   int max_influences = 1;
   for (auto vh : mesh.vertices()) max_influences = std::max(max_influences, mesh.property(h_inf, vh).size());
-  if (max_influences > 8) throw fail("a vertex has more than 8 influences");
-  const int slots = max_influences > 4 ? 8 : 4;
+  if (max_influences > Influences::kCapacity)
+    throw fail("a vertex has more than " + std::to_string(Influences::kCapacity) + " influences");
+  const int slots = 4 * ((max_influences + 3) / 4);  // whole JOINTS_n/WEIGHTS_n sets of four
   const bool has_n = mesh.has_halfedge_normals();
   const bool has_uv = [&] {
     if (!mesh.has_halfedge_texcoords2D()) return false;

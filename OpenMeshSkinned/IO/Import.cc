@@ -294,17 +294,7 @@ ImportReport detail::import_scene(const std::string& path, const std::string& re
         touched[vw.mVertexId] = 1;
         if (wt == 0.0) continue;
         Influences& vi = inf[vw.mVertexId];
-        if (!vi.add(j, wt)) {
-          // Full: keep the heaviest, so the capacity drops the least weight.
-          vi.sort();
-          if (wt > vi[Influences::kCapacity - 1].weight) {
-            Influences tmp;
-            for (int k = 0; k < Influences::kCapacity - 1; ++k) tmp.push(vi[k].joint, vi[k].weight);
-            tmp.push(j, wt);
-            vi = tmp;
-          }
-          over_capacity.push_back(vw.mVertexId);
-        }
+        if (!vi.add_keeping_heaviest(j, wt)) over_capacity.push_back(vw.mVertexId);
       }
     }
     std::sort(over_capacity.begin(), over_capacity.end());

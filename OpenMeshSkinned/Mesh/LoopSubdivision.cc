@@ -14,30 +14,13 @@ namespace {
 // A position and a skin, blended with the same weights.
 struct Blend {
   Eigen::Vector3d p = Eigen::Vector3d::Zero();
-  std::vector<std::pair<int, double>> w;
+  InfluenceSum w;
 
   void add(double c, const Eigen::Vector3d& q, const Influences& inf) {
     p += c * q;
-    for (const JointWeight& jw : inf) {
-      bool found = false;
-      for (auto& [j, x] : w)
-        if (j == jw.joint) {
-          x += c * jw.weight;
-          found = true;
-        }
-      if (!found) w.emplace_back(jw.joint, c * jw.weight);
-    }
+    w.add(inf, c);
   }
-  Influences influences() const {
-    auto v = w;
-    std::sort(v.begin(), v.end(), [](auto& a, auto& b) { return a.second > b.second; });
-    Influences inf;
-    for (const auto& [j, x] : v)
-      if (x > 1e-12 && !inf.push(j, x)) break;
-    inf.normalize();
-    inf.sort();
-    return inf;
-  }
+  Influences influences() const { return w.keep_heaviest(Influences::kCapacity); }
 };
 
 }  // namespace

@@ -78,11 +78,21 @@ public:
     return 0.0;
   }
 
-  /// Keeps the heaviest \p n influences (after sort()) and rescales them to sum to one.
-  void truncate_and_normalize(int n) {
+  /** The cap rule, the one place it is written: keeps the heaviest \p n influences (ties: lower joint
+   *  index first) and rescales them to sum to one. */
+  void keep_heaviest(int n) {
     sort();
-    if (size_ > n) size_ = n;
+    if (size_ > n) size_ = std::max(n, 0);
     normalize();
+  }
+
+  /** As add(), but when full the lightest influence gives way to a heavier new one (and a lighter new
+   *  one is not kept). Returns false when some weight was dropped either way. */
+  bool add_keeping_heaviest(int32_t joint, double weight) {
+    if (add(joint, weight)) return true;
+    sort();
+    if (weight > data_[size_ - 1].weight) data_[size_ - 1] = {joint, weight};
+    return false;
   }
 
   void normalize() {
@@ -102,6 +112,52 @@ public:
 private:
   std::array<JointWeight, kCapacity> data_{};
   int32_t size_ = 0;
+};
+
+/** A blend of several skins being summed (a merged or subdivided vertex), wider than Influences so that
+ *  no joint is lost before the cap: keep_heaviest() then applies the cap rule. */
+class InfluenceSum {
+public:
+  static constexpr int kCapacity = 8 * Influences::kCapacity;
+
+  /// Adds \p c times every weight of \p inf.
+  void add(const Influences& inf, double c) {
+    for (const JointWeight& jw : inf) add(jw.joint, c * jw.weight);
+  }
+  /// Adds \p weight to \p joint; when full, the lightest entry gives way to a heavier new joint.
+  void add(int32_t joint, double weight) {
+    for (int i = 0; i < size_; ++i)
+      if (data_[i].joint == joint) {
+        data_[i].weight += weight;
+        return;
+      }
+    if (size_ < kCapacity) {
+      data_[size_++] = {joint, weight};
+      return;
+    }
+    auto lightest = std::min_element(data_.begin(), data_.end(),
+                                     [](const JointWeight& a, const JointWeight& b) { return a.weight < b.weight; });
+    if (weight > lightest->weight) *lightest = {joint, weight};
+  }
+
+  /// The heaviest \p n positive weights (at most Influences::kCapacity), renormalised: Influences::keep_heaviest.
+  Influences keep_heaviest(int n) const {
+    std::array<JointWeight, kCapacity> v = data_;
+    const int m = std::min(std::max(n, 0), Influences::kCapacity);
+    std::partial_sort(v.begin(), v.begin() + std::min(m, size_), v.begin() + size_, heavier);
+    Influences out;
+    for (int i = 0; i < size_ && out.size() < m; ++i)
+      if (v[i].weight > 0.0) out.push(v[i].joint, v[i].weight);
+    out.keep_heaviest(m);
+    return out;
+  }
+
+private:
+  static bool heavier(const JointWeight& a, const JointWeight& b) {
+    return a.weight != b.weight ? a.weight > b.weight : a.joint < b.joint;
+  }
+  std::array<JointWeight, kCapacity> data_{};
+  int size_ = 0;
 };
 
 }  // namespace OpenMeshSkinned

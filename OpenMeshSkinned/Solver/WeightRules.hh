@@ -46,27 +46,10 @@ inline Influences merge_weights(WeightRule rule, const Eigen::Vector3d& p, const
     }
   }
   c1 = 1.0 - c0;
-  // Union of the two supports; 2 * kCapacity entries at most before the cap.
-  JointWeight acc[2 * Influences::kCapacity];
-  int n = 0;
-  auto add = [&](const Influences& w, double c) {
-    if (c <= 0.0) return;
-    for (const JointWeight& jw : w) {
-      int k = 0;
-      while (k < n && acc[k].joint != jw.joint) ++k;
-      if (k == n) acc[n++] = {jw.joint, 0.0};
-      acc[k].weight += c * jw.weight;
-    }
-  };
-  add(w0, c0);
-  add(w1, c1);
-  std::sort(acc, acc + n, [](const JointWeight& a, const JointWeight& b) { return a.weight > b.weight; });
-  Influences out;
-  for (int k = 0; k < n && k < cap && k < Influences::kCapacity; ++k)
-    if (acc[k].weight > 0.0) out.push(acc[k].joint, acc[k].weight);
-  out.normalize();
-  out.sort();
-  return out;
+  InfluenceSum sum;
+  if (c0 > 0.0) sum.add(w0, c0);
+  if (c1 > 0.0) sum.add(w1, c1);
+  return sum.keep_heaviest(cap);
 }
 
 }  // namespace OpenMeshSkinned
