@@ -1,7 +1,7 @@
 // skinned-decimate: LOD chains from skinned characters, judged in poses the decimater never saw.
-#include <OpenMeshSkinned/Decimater/ModDeformationSensitiveT.hh>
-#include <OpenMeshSkinned/Decimater/ModPoseIndependentQuadricT.hh>
-#include <OpenMeshSkinned/Decimater/ModRestPoseQuadricT.hh>
+#include <OpenMeshSkinned/Decimater/Baselines/ModDeformationSensitiveT.hh>
+#include <OpenMeshSkinned/Decimater/Baselines/ModPoseIndependentQuadricT.hh>
+#include <OpenMeshSkinned/Decimater/Baselines/ModRestPoseQuadricT.hh>
 #include <OpenMeshSkinned/Decimater/ModSkinnedFoldOverT.hh>
 #include <OpenMeshSkinned/Decimater/ModSkinnedQuadricT.hh>
 #include <OpenMeshSkinned/Decimater/ModWeightCapT.hh>

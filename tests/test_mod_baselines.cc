@@ -1,9 +1,9 @@
 // The other cost models and weight-update rules, against which the skinned quadric is judged.
 #include "helpers.hh"
 
-#include <OpenMeshSkinned/Decimater/ModDeformationSensitiveT.hh>
-#include <OpenMeshSkinned/Decimater/ModPoseIndependentQuadricT.hh>
-#include <OpenMeshSkinned/Decimater/ModRestPoseQuadricT.hh>
+#include <OpenMeshSkinned/Decimater/Baselines/ModDeformationSensitiveT.hh>
+#include <OpenMeshSkinned/Decimater/Baselines/ModPoseIndependentQuadricT.hh>
+#include <OpenMeshSkinned/Decimater/Baselines/ModRestPoseQuadricT.hh>
 #include <OpenMeshSkinned/Mesh/Procedural.hh>
 
 using namespace OpenMeshSkinned;

@@ -1,7 +1,7 @@
 // SolverModuleT: modules own their settings; the shared solver's are what the attached modules ask.
 #include "helpers.hh"
 
-#include <OpenMeshSkinned/Decimater/ModRestPoseQuadricT.hh>
+#include <OpenMeshSkinned/Decimater/Baselines/ModRestPoseQuadricT.hh>
 #include <OpenMeshSkinned/Decimater/ModSkinnedFoldOverT.hh>
 #include <OpenMeshSkinned/Decimater/ModSkinnedQuadricT.hh>
 #include <OpenMeshSkinned/Decimater/ModWeightCapT.hh>

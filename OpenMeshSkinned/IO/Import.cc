@@ -30,7 +30,7 @@
 namespace OpenMeshSkinned {
 namespace {
 
-Eigen::Matrix4d to_eigen(const aiMatrix4x4& m) {
+Eigen::Matrix4d to_matrix(const aiMatrix4x4& m) {
   Eigen::Matrix4d e;
   e << m.a1, m.a2, m.a3, m.a4, m.b1, m.b2, m.b3, m.b4, m.c1, m.c2, m.c3, m.c4, m.d1, m.d2, m.d3, m.d4;
   return e;
@@ -75,7 +75,7 @@ struct SceneNodes {
     const int i = static_cast<int>(nodes.size());
     nodes.push_back(n);
     parent.push_back(p);
-    global.push_back(p < 0 ? to_eigen(n->mTransformation) : Eigen::Matrix4d(global[p] * to_eigen(n->mTransformation)));
+    global.push_back(p < 0 ? to_matrix(n->mTransformation) : Eigen::Matrix4d(global[p] * to_matrix(n->mTransformation)));
     by_name.emplace(n->mName.C_Str(), i);  // first one wins, as assimp's FindNode does
     index[n] = i;
     for (unsigned c = 0; c < n->mNumChildren; ++c) visit(n->mChildren[c], i);
@@ -180,7 +180,7 @@ ImportReport detail::import_scene(const std::string& path, const std::string& re
     Joint j;
     j.name = sn.nodes[i]->mName.C_Str();
     j.parent = sn.parent[i] < 0 ? -1 : joints_of_node[sn.parent[i]].front();
-    j.rest_local = to_eigen(sn.nodes[i]->mTransformation);
+    j.rest_local = to_matrix(sn.nodes[i]->mTransformation);
     j.inverse_bind = sn.global[i].inverse();
     joints_of_node[i].push_back(skel.size());
     skel.joints.push_back(j);
@@ -253,7 +253,7 @@ ImportReport detail::import_scene(const std::string& path, const std::string& re
       std::vector<std::pair<Eigen::Matrix4d, double>> spaces;  // candidate, weight agreeing with it
       for (unsigned b = 0; b < am->mNumBones; ++b) {
         const aiBone* bone = am->mBones[b];
-        const Eigen::Matrix4d c = sn.global[bone_node(bone)] * to_eigen(bone->mOffsetMatrix);
+        const Eigen::Matrix4d c = sn.global[bone_node(bone)] * to_matrix(bone->mOffsetMatrix);
         double total = 0.0;
         for (unsigned w = 0; w < bone->mNumWeights; ++w) total += bone->mWeights[w].mWeight;
         const double tol = 1e-4 * std::max(1.0, c.cwiseAbs().maxCoeff());
@@ -279,7 +279,7 @@ ImportReport detail::import_scene(const std::string& path, const std::string& re
     std::vector<size_t> over_capacity;
     for (unsigned b = 0; b < am->mNumBones; ++b) {
       const aiBone* bone = am->mBones[b];
-      const int j = joint_for(bone_node(bone), to_eigen(bone->mOffsetMatrix) * B_inv);
+      const int j = joint_for(bone_node(bone), to_matrix(bone->mOffsetMatrix) * B_inv);
       for (unsigned w = 0; w < bone->mNumWeights; ++w) {
         const aiVertexWeight& vw = bone->mWeights[w];
         if (vw.mVertexId >= am->mNumVertices)

@@ -4,7 +4,7 @@
  *  (embedded in the file, or read from beside it). Used by import_skinned().
  */
 
-#include "OpenMeshSkinned/Skin/Skeleton.hh"
+#include "OpenMeshSkinned/Skin/Material.hh"
 
 #include <string>
 #include <vector>

@@ -5,7 +5,7 @@
  *  re-encoded as PNG.
  */
 
-#include "OpenMeshSkinned/Skin/Skeleton.hh"
+#include "OpenMeshSkinned/Skin/Material.hh"
 
 #include <string>
 #include <vector>

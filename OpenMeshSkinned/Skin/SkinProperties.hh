@@ -13,6 +13,7 @@
  */
 
 #include "OpenMeshSkinned/Skin/Influences.hh"
+#include "OpenMeshSkinned/Skin/Material.hh"
 #include "OpenMeshSkinned/Skin/Skeleton.hh"
 
 #include <OpenMesh/Core/Utils/Property.hh>

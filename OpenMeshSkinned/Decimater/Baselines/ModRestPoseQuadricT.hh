@@ -1,7 +1,7 @@
 #pragma once
 /** \file ModRestPoseQuadricT.hh */
 
-#include "OpenMeshSkinned/Decimater/RestSpaceQuadricModuleT.hh"
+#include "OpenMeshSkinned/Decimater/Baselines/RestSpaceQuadricModuleT.hh"
 
 namespace OpenMeshSkinned {
 

@@ -1,7 +1,7 @@
 #pragma once
 /** \file ModPoseIndependentQuadricT.hh */
 
-#include "OpenMeshSkinned/Decimater/RestSpaceQuadricModuleT.hh"
+#include "OpenMeshSkinned/Decimater/Baselines/RestSpaceQuadricModuleT.hh"
 
 #include <boost/math/special_functions/erf.hpp>
 
