@@ -1,0 +1,156 @@
+#include "Methods.hh"
+
+#include <OpenMeshSkinned/Decimater/Baselines/ModDeformationSensitiveT.hh>
+#include <OpenMeshSkinned/Decimater/Baselines/ModPoseIndependentQuadricT.hh>
+#include <OpenMeshSkinned/Decimater/Baselines/ModRestPoseQuadricT.hh>
+#include <OpenMeshSkinned/Decimater/ModSkinnedFoldOverT.hh>
+#include <OpenMeshSkinned/Decimater/ModSkinnedQuadricT.hh>
+#include <OpenMeshSkinned/Decimater/ModWeightCapT.hh>
+
+#include <OpenMesh/Tools/Decimater/DecimaterT.hh>
+#include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
+#include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
+#include <OpenMesh/Tools/Decimater/Observer.hh>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <stdexcept>
+
+namespace skinned_decimate {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using Decimater = OpenMesh::Decimater::DecimaterT<Mesh>;
+
+// The modules a chain may use; each method adds its own.
+struct Handles {
+  OpenMeshSkinned::ModSkinnedQuadricT<Mesh>::Handle skinned;
+  OpenMeshSkinned::ModSkinnedFoldOverT<Mesh>::Handle fold_over;
+  OpenMeshSkinned::ModWeightCapT<Mesh>::Handle cap;
+  OpenMesh::Decimater::ModQuadricT<Mesh>::Handle quadric;
+  OpenMesh::Decimater::ModNormalFlippingT<Mesh>::Handle normal_flipping;
+  OpenMeshSkinned::ModRestPoseQuadricT<Mesh>::Handle rest;
+  OpenMeshSkinned::ModDeformationSensitiveT<Mesh>::Handle dsd;
+  OpenMeshSkinned::ModPoseIndependentQuadricT<Mesh>::Handle decoro;
+};
+
+struct MethodModules {
+  Method method;
+  void (*add)(Decimater&, Handles&);  // every method but OpenMesh's own gets the skinned fold-over check
+};
+
+const std::vector<MethodModules>& table() {
+  static const std::vector<MethodModules> t = {
+      {{"skinned", "Landreneau-Schaefer skinned quadric; the default"},
+       [](Decimater& d, Handles& h) { d.add(h.skinned), d.add(h.fold_over); }},
+      {{"decoro", "DeCoro-Rusinkiewicz pose-independent quadric over the clips"},
+       [](Decimater& d, Handles& h) { d.add(h.decoro), d.add(h.fold_over); }},
+      {{"dsd", "Mohr-Gleicher deformation-sensitive decimation"},
+       [](Decimater& d, Handles& h) { d.add(h.dsd), d.add(h.fold_over); }},
+      {{"rest", "rest-pose quadric, distance-interpolated weights"},
+       [](Decimater& d, Handles& h) { d.add(h.rest), d.add(h.fold_over); }},
+      {{"static", "OpenMesh's ModQuadricT and ModNormalFlippingT as they are"},
+       [](Decimater& d, Handles& h) { d.add(h.quadric), d.add(h.normal_flipping); }},
+  };
+  return t;
+}
+
+// Percent of collapses on a terminal, once the run has taken a second.
+class Progress : public OpenMesh::Decimater::Observer {
+public:
+  Progress(bool on, size_t total, std::string label)
+      : Observer(std::max<size_t>(1, total / 200)), on_(on), total_(std::max<size_t>(1, total)), label_(std::move(label)) {}
+  void set_done_before(size_t n) { before_ = n; }
+  void notify(size_t step) override {
+    if (!on_ || Clock::now() - start_ < std::chrono::seconds(1)) return;
+    std::fprintf(stderr, "\r%s: %3d%% of collapses", label_.c_str(), int(100.0 * (before_ + step) / total_));
+    shown_ = true;
+  }
+  ~Progress() override {
+    if (shown_) std::fprintf(stderr, "\r%*s\r", int(label_.size()) + 20, "");
+  }
+
+private:
+  bool on_;
+  size_t total_, before_ = 0;
+  std::string label_;
+  Clock::time_point start_ = Clock::now();
+  bool shown_ = false;
+};
+
+int max_influences_of(const Mesh& mesh) {
+  const auto h = OpenMeshSkinned::influences_handle(mesh);
+  int n = 0;
+  for (auto vh : mesh.vertices()) n = std::max(n, mesh.property(h, vh).size());
+  return n;
+}
+
+}  // namespace
+
+const std::vector<Method>& methods() {
+  static const std::vector<Method> m = [] {
+    std::vector<Method> out;
+    for (const auto& t : table()) out.push_back(t.method);
+    return out;
+  }();
+  return m;
+}
+
+std::string method_names() {
+  std::string s;
+  for (size_t i = 0; i < methods().size(); ++i)
+    s += (i == 0 ? "" : i + 1 == methods().size() ? " or " : ", ") + std::string(methods()[i].name);
+  return s;
+}
+
+bool is_method(const std::string& name) {
+  return std::any_of(methods().begin(), methods().end(), [&](const Method& m) { return name == m.name; });
+}
+
+std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vector<size_t>& targets,
+                                              const std::vector<double>& ratios, const Options& opt,
+                                              const std::string& method, const std::string& label) {
+  const auto it = std::find_if(table().begin(), table().end(), [&](const MethodModules& t) { return method == t.method.name; });
+  if (it == table().end()) throw std::logic_error("unknown method " + method);
+  Mesh mesh = input;
+  Decimater dec(mesh);
+  Handles h;
+  it->add(dec, h);
+  dec.add(h.cap);
+  dec.module(h.cap).set_max_influences(opt.max_influences);
+  if (!dec.initialize()) throw std::runtime_error("the decimater did not initialize");
+  Progress progress(!opt.quiet && isatty(2), input.n_vertices() - targets.back() / 2, label);
+  dec.set_observer(&progress);
+
+  std::vector<std::pair<Lod, Mesh>> out;
+  const auto t0 = Clock::now();
+  size_t collapses = 0;
+  for (size_t i = 0; i < targets.size(); ++i) {
+    progress.set_done_before(collapses);
+    // decimate_to_faces counts deleted faces too until garbage collection, which would also renumber the
+    // vertices under the solver's feet: aim at the target plus the faces already deleted instead.
+    size_t live = 0;
+    for (auto fh : mesh.faces()) (void)fh, ++live;
+    collapses += dec.decimate_to_faces(0, targets[i] + (mesh.n_faces() - live));
+    if (h.fold_over.is_valid()) dec.module(h.fold_over).release_deferred();  // every vertex gets a chance next level
+    Lod lod;
+    lod.ratio = ratios[i];
+    lod.target = targets[i];
+    lod.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    Mesh snap = mesh;
+    snap.garbage_collection();
+    for (auto vh : snap.vertices()) snap.status(vh).set_locked(false);
+    lod.faces = snap.n_faces();
+    lod.vertices = snap.n_vertices();
+    lod.max_influences = max_influences_of(snap);
+    out.emplace_back(lod, std::move(snap));
+  }
+  dec.set_observer(nullptr);
+  return out;
+}
+
+}  // namespace skinned_decimate

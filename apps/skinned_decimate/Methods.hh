@@ -1,0 +1,41 @@
+#pragma once
+// The decimation methods the tool offers (one table: validation, --compare, help and the modules all
+// read it) and the LOD chain built with one of them.
+
+#include "Options.hh"
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace skinned_decimate {
+
+struct Method {
+  const char* name;
+  const char* help;  // what it is, for --help
+};
+
+/// Every method, the product first: the order of --compare.
+const std::vector<Method>& methods();
+/// "skinned, decoro, dsd, rest or static".
+std::string method_names();
+bool is_method(const std::string& name);
+
+/// One level of a chain as measured.
+struct Lod {
+  double ratio = 0.0;
+  size_t target = 0;  // triangles asked for
+  size_t faces = 0, vertices = 0;
+  double seconds = 0.0;
+  int max_influences = 0;
+  double rms = 0.0, hausdorff = 0.0;  // % of the rest-pose bounding-box diagonal
+  std::string file;
+};
+
+/** Decimates a copy of \p input through every target in one pass (the multiresolution hierarchy: each
+ *  level continues from the previous one) with \p method, and snapshots the mesh as it passes each target. */
+std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vector<size_t>& targets,
+                                              const std::vector<double>& ratios, const Options& opt,
+                                              const std::string& method, const std::string& label);
+
+}  // namespace skinned_decimate

@@ -1,0 +1,42 @@
+#pragma once
+// What the command line asked for, and the one error type that means "the command line is wrong" (exit 2).
+
+#include <OpenMeshSkinned/Mesh/SkinnedMesh.hh>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace skinned_decimate {
+
+using Mesh = OpenMeshSkinned::SkinnedMesh;
+
+struct Options {
+  std::string input, output, report, pose_clip, method = "skinned";
+  double ratio = 0.0;
+  size_t faces = 0;
+  std::vector<double> lods;  // sorted, largest first
+  int max_influences = 4;
+  int poses = 8;
+  bool quiet = false;
+  bool poses_given = false;
+  bool ratio_given = false;
+  bool compare = false;
+  bool bind_pose = true;
+  bool faces_given = false;
+  bool isolate = true;
+  size_t max_memory_mb = 8192;
+  double time_limit = 300.0;
+};
+
+// Past this many example poses the schedule stops being a sample of the clips and becomes the clips.
+constexpr int kMaxPoses = 1000;
+// What one example or held-out pose costs per vertex: posed position and pose quadric in the solver,
+// posed copies in the evaluation (measured: about 240 KB per pose on a 2,000-vertex character).
+constexpr size_t kBytesPerVertexPose = 128;
+
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+}  // namespace skinned_decimate

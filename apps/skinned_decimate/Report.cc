@@ -1,0 +1,73 @@
+#include "Report.hh"
+
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+namespace skinned_decimate {
+
+namespace {
+
+json times_json(const std::vector<OpenMeshSkinned::Clip>& clips, const std::vector<OpenMeshSkinned::PoseTime>& t) {
+  json a = json::array();
+  for (const auto& p : t) a.push_back({{"clip", clips[p.clip].name}, {"time", p.time}});
+  return a;
+}
+
+}  // namespace
+
+std::string fmt(double v, int prec) {
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(prec) << v;
+  return os.str();
+}
+
+void print_table(const std::string& title, const std::vector<std::pair<Lod, Mesh>>& chain, bool have_heldout) {
+  std::cout << title << "\n"
+            << "  " << std::left << std::setw(8) << "ratio" << std::right << std::setw(10) << "triangles"
+            << std::setw(10) << "vertices" << std::setw(10) << "seconds" << std::setw(10) << "max infl"
+            << std::setw(14) << (have_heldout ? "heldout RMS%" : "rest RMS%") << std::setw(15)
+            << (have_heldout ? "heldout Haus%" : "rest Haus%") << "\n";
+  for (const auto& [lod, mesh] : chain)
+    std::cout << "  " << std::left << std::setw(8) << fmt(lod.ratio, 4) << std::right << std::setw(10) << lod.faces
+              << std::setw(10) << lod.vertices << std::setw(10) << fmt(lod.seconds, 2) << std::setw(10)
+              << lod.max_influences << std::setw(14) << fmt(lod.rms, 4) << std::setw(15) << fmt(lod.hausdorff, 4)
+              << "\n";
+  for (const auto& [lod, mesh] : chain)
+    if (lod.faces > lod.target)
+      std::cout << "  ratio " << fmt(lod.ratio, 4) << ": target of " << lod.target << " triangles not reached; stopped at "
+                << lod.faces << " (no collapse left that keeps the mesh valid)\n";
+}
+
+void print_comparison(const json& runs) {
+  std::cout << "comparison (held-out error, % of the rest-pose bounding-box diagonal)\n  " << std::left << std::setw(9)
+            << "method" << std::setw(8) << "ratio" << std::right << std::setw(10) << "triangles" << std::setw(10)
+            << "seconds" << std::setw(14) << "mean RMS%" << std::setw(15) << "max Haus%" << "\n";
+  for (const auto& r : runs)
+    for (const auto& l : r["lods"])
+      std::cout << "  " << std::left << std::setw(9) << r["method"].get<std::string>() << std::setw(8)
+                << fmt(l["ratio"].get<double>(), 4) << std::right << std::setw(10) << l["faces"].get<size_t>()
+                << std::setw(10) << fmt(l["seconds"].get<double>(), 2) << std::setw(14)
+                << fmt(l["heldout_rms"].get<double>(), 4) << std::setw(15) << fmt(l["heldout_hausdorff"].get<double>(), 4)
+                << "\n";
+}
+
+json lod_json(const Lod& lod, const std::vector<OpenMeshSkinned::Clip>& clips, const OpenMeshSkinned::PoseSchedule& sched,
+              bool bind_pose_in_examples) {
+  json l = {{"ratio", lod.ratio},
+            {"target_faces", lod.target},
+            {"target_reached", lod.faces <= lod.target},
+            {"faces", lod.faces},
+            {"vertices", lod.vertices},
+            {"seconds", lod.seconds},
+            {"max_influences", lod.max_influences},
+            {"heldout_rms", lod.rms},
+            {"heldout_hausdorff", lod.hausdorff},
+            {"example_pose_times", times_json(clips, sched.examples)},
+            {"bind_pose_in_examples", bind_pose_in_examples},
+            {"heldout_times", times_json(clips, sched.held_out)}};
+  if (!lod.file.empty()) l["file"] = lod.file;
+  return l;
+}
+
+}  // namespace skinned_decimate

@@ -1,0 +1,240 @@
+#include "Run.hh"
+
+#include "Methods.hh"
+#include "Report.hh"
+
+#include <OpenMeshSkinned/Eval/SurfaceDistance.hh>
+#include <OpenMeshSkinned/IO/ExportGltf.hh>
+#include <OpenMeshSkinned/IO/Import.hh>
+#include <OpenMeshSkinned/IO/OutputSet.hh>
+#include <OpenMeshSkinned/Mesh/Procedural.hh>
+#include <OpenMeshSkinned/Skin/PoseSchedule.hh>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+namespace skinned_decimate {
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace OpenMeshSkinned;
+
+// The example poses the decimater sees and the held-out frames the result is judged in.
+struct Poses {
+  PoseSchedule schedule;
+  std::vector<Pose> examples, heldout;
+};
+
+// --pose-clip as a name or an index; -1 when not given.
+int resolve_clip(const std::vector<Clip>& clips, const std::string& which, const std::string& name) {
+  if (which.empty()) return -1;
+  for (size_t c = 0; c < clips.size(); ++c)
+    if (clips[c].name == which) return int(c);
+  if (std::all_of(which.begin(), which.end(), ::isdigit) && which.size() < 9 && std::stoi(which) < int(clips.size()))
+    return std::stoi(which);
+  throw UsageError("--pose-clip " + which + ": no such clip in " + name + " (" + std::to_string(clips.size()) + " clips)");
+}
+
+Poses choose_poses(const Mesh& mesh, const std::string& name, const Options& opt) {
+  const auto& all = clips(mesh);
+  const Skeleton& skel = skeleton(mesh);
+  Poses p;
+  if (all.empty()) {
+    if (opt.poses_given)
+      std::cerr << "skinned-decimate: warning: " << name
+                << " has no animation: --poses ignored, decimating and judging in the rest pose only\n";
+    p.examples = p.heldout = {Pose::identity(skel.size())};
+    return p;
+  }
+  p.schedule = make_pose_schedule(all, opt.poses, resolve_clip(all, opt.pose_clip, name));
+  p.examples = poses_at(skel, all, p.schedule.examples);
+  // The bind pose too, unless asked not to: it is the pose every other tool judges, and a handful of
+  // clip frames can miss the neutral configuration entirely.
+  if (opt.bind_pose) p.examples.push_back(Pose::identity(skel.size()));
+  p.heldout = poses_at(skel, all, p.schedule.held_out.empty() ? p.schedule.examples : p.schedule.held_out);
+  if (!opt.quiet) {
+    std::cout << name << ": example poses at";
+    for (const auto& t : p.schedule.examples) std::cout << " " << all[t.clip].name << "@" << fmt(t.time, 3) << "s";
+    std::cout << (opt.bind_pose ? " + bind pose" : "") << "\n";
+  }
+  return p;
+}
+
+// The triangle counts asked for, and the ratio each stands for.
+void choose_targets(const Mesh& mesh, const Options& opt, std::vector<double>& ratios, std::vector<size_t>& targets) {
+  ratios = opt.lods;
+  if (ratios.empty()) ratios = {opt.faces ? double(opt.faces) / mesh.n_faces() : opt.ratio};
+  targets.clear();
+  for (double r : ratios) targets.push_back(std::max<size_t>(1, static_cast<size_t>(std::llround(r * mesh.n_faces()))));
+  if (opt.faces && opt.lods.empty()) targets = {opt.faces};
+}
+
+void evaluate(const Mesh& original, std::vector<std::pair<Lod, Mesh>>& chain, const std::vector<Pose>& frames) {
+  const double diag = bbox_diagonal(original);
+  for (auto& [lod, mesh] : chain) {
+    double sum_rms = 0.0, max_h = 0.0;
+    for (const auto& pose : frames) {
+      const auto d = surface_distance(posed_soup(original, pose), posed_soup(mesh, pose), 20000);
+      sum_rms += d.rms;
+      max_h = std::max(max_h, d.hausdorff);
+    }
+    lod.rms = 100.0 * sum_rms / frames.size() / diag;
+    lod.hausdorff = 100.0 * max_h / diag;
+  }
+}
+
+std::string lod_path(const std::string& output, size_t i, size_t n) {
+  if (n == 1) return output;
+  const fs::path p(output);
+  return (p.parent_path() / (p.stem().string() + "_lod" + std::to_string(i + 1) + p.extension().string())).string();
+}
+
+// Runs one character through one method: poses, targets, the chain, its error, the table, the files
+// (staged in \p outputs; none when it is null). Returns the report entry.
+json run_character(const Mesh& mesh, const std::string& name, const Options& opt, const std::string& method,
+                   const std::string& output, OutputSet* outputs) {
+  const Poses poses = choose_poses(mesh, name, opt);
+  Mesh work = mesh;
+  example_poses(work) = poses.examples;
+  std::vector<double> ratios;
+  std::vector<size_t> targets;
+  choose_targets(mesh, opt, ratios, targets);
+  auto chain = build_chain(work, targets, ratios, opt, method, name + " (" + method + ")");
+  evaluate(mesh, chain, poses.heldout);
+  const bool animated = !clips(mesh).empty();
+  print_table(name + " — " + method + (animated ? "" : ", rest pose only") + ", " + std::to_string(mesh.n_faces()) +
+                  " triangles in",
+              chain, animated);
+  json lods = json::array();
+  for (size_t i = 0; i < chain.size(); ++i) {
+    auto& [lod, lmesh] = chain[i];
+    if (outputs) {
+      lod.file = lod_path(output, i, chain.size());
+      export_gltf(lmesh, outputs->staging(lod.file));
+    }
+    lods.push_back(lod_json(lod, clips(mesh), poses.schedule, opt.bind_pose && animated));
+  }
+  if (outputs)
+    for (const auto& [lod, m] : chain) std::cout << "  wrote " << lod.file << "\n";
+  return {{"input", name},
+          {"method", method},
+          {"triangles_in", mesh.n_faces()},
+          {"units", "percent of the rest-pose bounding-box diagonal"},
+          {"lods", lods}};
+}
+
+// Every file this run will write, planned before any work so that a clash costs nothing.
+void plan_outputs(const Options& opt, const std::vector<std::string>& names, OutputSet& outputs) {
+  const size_t n = std::max<size_t>(1, opt.lods.size());
+  for (const std::string& name : names)
+    for (size_t i = 0; i < n; ++i) outputs.add(lod_path(name, i, n));
+  if (!opt.report.empty()) outputs.add(opt.report);
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream f(path, std::ios::binary);
+  f << text;
+  f.close();
+  if (!f) throw IOError(path + ": cannot be written");
+}
+
+void check_arguments(const Options& opt) {
+  if (opt.ratio_given && !(opt.ratio > 0.0 && opt.ratio <= 1.0)) throw UsageError("--ratio must be in (0, 1]");
+  if (opt.faces_given && opt.faces == 0) throw UsageError("--faces must be at least 1");
+  for (double r : opt.lods)
+    if (!(r > 0.0 && r <= 1.0)) throw UsageError("--lods: every ratio must be in (0, 1], got " + fmt(r, 4));
+  if (opt.max_influences < 1 || opt.max_influences > Influences::kCapacity)
+    throw UsageError("--max-influences must be 1 to " + std::to_string(Influences::kCapacity));
+  if (opt.poses < 1 || opt.poses > kMaxPoses) throw UsageError("--poses must be 1 to " + std::to_string(kMaxPoses));
+  if (!(opt.time_limit >= 0.0)) throw UsageError("--time-limit must be 0 (none) or more seconds");
+  if (!is_method(opt.method)) throw UsageError("--method must be " + method_names());
+}
+
+// The memory the example and held-out poses will take, checked before the decimater allocates it.
+void check_pose_budget(const Mesh& mesh, const Options& opt) {
+  const size_t poses = 2 * size_t(opt.poses) + 2;  // examples + bind, held-out frames in between
+  const size_t need_mb = (poses * mesh.n_vertices() * kBytesPerVertexPose >> 20) + 1;
+  if (opt.max_memory_mb > 0 && need_mb > opt.max_memory_mb)
+    throw UsageError("--poses " + std::to_string(opt.poses) + ": needs about " + std::to_string(need_mb) +
+                     " MB for this mesh (" + std::to_string(mesh.n_vertices()) + " vertices), over --max-memory " +
+                     std::to_string(opt.max_memory_mb) + " MB");
+}
+
+// No INPUT: the papers' own characters, skinned next to static, files in one folder.
+int run_builtin(const Options& opt) {
+  const std::string dir = opt.output.empty() ? "skinned-decimate-demo" : opt.output;
+  fs::create_directories(dir);
+  Options o = opt;
+  if (o.lods.empty()) o.lods = {0.5, 0.1, 0.02};
+  OutputSet outputs;
+  plan_outputs(o, {(fs::path(dir) / "leg.glb").string(), (fs::path(dir) / "column.glb").string()}, outputs);
+  std::cout << "No INPUT: running the papers' test characters; output in " << dir << "/\n\n";
+  json runs = json::array();
+  const std::pair<std::string, Mesh> characters[] = {{"leg", make_bending_cylinder(32, 64)},
+                                                     {"column", make_square_column()}};
+  for (const auto& [name, mesh] : characters) {
+    o.poses = name == "leg" ? 2 : 4;  // the papers' example poses: knee at 0 and 90; the column's four bends
+    o.pose_clip = "";
+    runs.push_back(run_character(mesh, name, o, "skinned", (fs::path(dir) / (name + ".glb")).string(), &outputs));
+    runs.push_back(run_character(mesh, name, o, "static", "", nullptr));
+    std::cout << "\n";
+  }
+  const json report = {{"input", "built-in"}, {"runs", runs}};
+  if (!opt.report.empty()) write_text(outputs.staging(opt.report), report.dump(2) + "\n");
+  outputs.commit();
+  std::cout << "Static = OpenMesh's rest-pose quadric with endpoint weights; skinned = this library. The error\n"
+               "columns are measured in frames the decimater never saw.\n";
+  return 0;
+}
+
+}  // namespace
+
+int run(const Options& opt) {
+  check_arguments(opt);
+  if (opt.input.empty()) return run_builtin(opt);
+  if (opt.output.empty()) throw UsageError("-o OUTPUT.glb is required with an INPUT");
+  const std::string ext = fs::path(opt.output).extension().string();
+  if (ext != ".glb" && ext != ".gltf") throw UsageError(opt.output + ": output must end in .glb or .gltf");
+  OutputSet outputs({opt.input});
+  try {
+    plan_outputs(opt, {opt.output}, outputs);
+  } catch (const IOError& e) {
+    throw UsageError(e.what());  // a clash or a missing folder is the command line's fault: exit 2
+  }
+  Mesh mesh;
+  ImportOptions io;
+  io.isolate = opt.isolate;
+  io.memory_limit_mb = opt.max_memory_mb;
+  io.time_limit_seconds = opt.time_limit;
+  const auto rep = import_skinned(opt.input, mesh, io);
+  if (opt.faces > mesh.n_faces())
+    throw UsageError("--faces " + std::to_string(opt.faces) + " is more than the input's " +
+                     std::to_string(mesh.n_faces()) + " triangles");
+  if (!clips(mesh).empty()) resolve_clip(clips(mesh), opt.pose_clip, opt.input);
+  check_pose_budget(mesh, opt);
+  // After the checks, so that a bad argument is one line. Always shown: they say what was changed or lost.
+  for (const auto& w : rep.warnings) std::cerr << "skinned-decimate: warning: " << opt.input << ": " << w << "\n";
+  Options o = opt;
+  if (o.lods.empty() && o.faces == 0 && !o.ratio_given) o.ratio = 0.5;
+  json report;
+  if (o.compare) {
+    json runs = json::array();
+    for (const Method& m : methods()) {
+      runs.push_back(run_character(mesh, opt.input, o, m.name, opt.output, m.name == opt.method ? &outputs : nullptr));
+      std::cout << "\n";
+    }
+    print_comparison(runs);
+    report = {{"input", opt.input}, {"runs", runs}};
+  } else {
+    report = run_character(mesh, opt.input, o, opt.method, opt.output, &outputs);
+  }
+  if (!opt.report.empty()) write_text(outputs.staging(opt.report), report.dump(2) + "\n");
+  outputs.commit();
+  return 0;
+}
+
+}  // namespace skinned_decimate

@@ -1,0 +1,11 @@
+#pragma once
+// One invocation of the tool, once the command line is parsed.
+
+#include "Options.hh"
+
+namespace skinned_decimate {
+
+/// Returns the exit code; throws UsageError (exit 2) or another exception (exit 1).
+int run(const Options& opt);
+
+}  // namespace skinned_decimate

@@ -1,0 +1,74 @@
+// skinned-decimate: LOD chains from skinned characters, judged in poses the decimater never saw.
+#include "Methods.hh"
+#include "Options.hh"
+#include "Run.hh"
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <iostream>
+
+using namespace skinned_decimate;
+
+namespace {
+
+std::string method_help() {
+  std::string s = "Priority module:";
+  for (const Method& m : methods()) s += std::string(" ") + m.name + " (" + m.help + "),";
+  s.back() = '.';
+  return s;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"skinned-decimate: LODs of a skinned character that stay right in poses never seen.\n"
+               "With no INPUT, runs the papers' test characters (DeCoro's leg, Landreneau-Schaefer's column)."};
+  Options opt;
+  app.add_option("input", opt.input, "Skinned asset (glTF/GLB, FBX, Collada, X, MD5, ...)")->check(CLI::ExistingFile);
+  app.add_option("-o,--output", opt.output,
+                 "Output .glb/.gltf; with --lods, NAME_lod1.glb, NAME_lod2.glb ... in the order of decreasing ratio "
+                 "(with no INPUT: the output folder). Never the input: all files of a run appear together at the end, or none");
+  auto* r = app.add_option("--ratio", opt.ratio, "Keep this fraction of the triangles, in (0,1] (default 0.5)");
+  auto* f = app.add_option("--faces", opt.faces, "Keep this many triangles");
+  auto* l = app.add_option("--lods", opt.lods, "A chain of ratios, built in one pass, e.g. 0.5,0.25,0.1")->delimiter(',');
+  r->excludes(f)->excludes(l);
+  f->excludes(l);
+  app.add_option("--max-influences", opt.max_influences, "Bone influences per vertex at most (1-8, default 4)");
+  app.add_option("--poses", opt.poses,
+                 "Example poses: K evenly spaced times over the clip, both ends included, plus the bind pose (1-" +
+                     std::to_string(kMaxPoses) + ", default 8)");
+  app.add_option("--pose-clip", opt.pose_clip, "Clip (name or index) for the example poses; default: all clips end to end");
+  app.add_option("--method", opt.method, method_help());
+  app.add_flag("--compare", opt.compare, "Run every method on the same input and print one table");
+  app.add_option("--report", opt.report, "Write the summary as JSON");
+  app.add_flag("--quiet", opt.quiet, "No progress and no pose list (warnings are still printed)");
+  app.add_flag("!--no-bind-pose", opt.bind_pose, "Do not add the bind pose to the example poses");
+  app.add_flag("!--no-isolate", opt.isolate,
+               "Read the input in this process (by default a child process reads it, so that a reader crash on a "
+               "corrupt file is a clean error)");
+  app.add_option("--max-memory", opt.max_memory_mb,
+                 "Memory limit in MB for reading the input and for the example poses (default 8192; 0 = none)");
+  app.add_option("--time-limit", opt.time_limit, "Seconds the input's reader may take (default 300; 0 = none)");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "skinned-decimate: " << e.what() << "\n";
+    return 2;
+  }
+  opt.poses_given = app.count("--poses") > 0;
+  opt.ratio_given = app.count("--ratio") > 0;
+  opt.faces_given = app.count("--faces") > 0;
+  std::sort(opt.lods.rbegin(), opt.lods.rend());
+  try {
+    return run(opt);
+  } catch (const UsageError& e) {
+    std::cerr << "skinned-decimate: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "skinned-decimate: " << e.what() << "\n";
+    return 1;
+  }
+}
