@@ -1,0 +1,44 @@
+#pragma once
+/** \file ImportGeometry.hh
+ *  The import step that turns assimp meshes into one OpenMesh mesh: each instance in its bind space,
+ *  skin weights read and checked, split copies welded, faces with per-corner normals and UVs.
+ *  Internal to the importer (Import.cc).
+ */
+
+#include "OpenMeshSkinned/IO/Import.hh"
+#include "OpenMeshSkinned/IO/ImportScene.hh"
+#include "OpenMeshSkinned/Skin/Morph.hh"
+#include "OpenMeshSkinned/Skin/SkinProperties.hh"
+
+#include <memory>
+
+namespace OpenMeshSkinned::detail {
+
+/// Everything one import's instances share: the target mesh, its handles, and the welding table.
+class GeometryBuilder {
+public:
+  GeometryBuilder(SkinnedMesh& mesh, size_t n_targets, const ImportOptions& opt, ImportReport& rep,
+                  const std::string& path);
+  ~GeometryBuilder();
+
+  /// Adds instance \p in, whose morph targets start at \p target_base.
+  void add(const aiScene* scene, const SceneNodes& sn, JointMap& joints, const MeshInstance& in, size_t target_base);
+
+private:
+  Eigen::Matrix4d bind_space(const aiMesh* am, const SceneNodes& sn, const JointMap& joints, int node) const;
+  std::vector<Influences> read_weights(const aiMesh* am, JointMap& joints, const Eigen::Matrix4d& B_inv, int node_joint);
+  void add_faces(const aiMesh* am, const std::vector<SkinnedMesh::VertexHandle>& vmap, const Eigen::Matrix3d& normal_matrix);
+
+  struct Weld;
+  SkinnedMesh& mesh_;
+  size_t n_targets_;
+  const ImportOptions& opt_;
+  ImportReport& rep_;
+  std::string path_;
+  OpenMesh::VPropHandleT<Influences> h_inf_;
+  OpenMesh::FPropHandleT<int> h_fmat_;
+  OpenMesh::VPropHandleT<MorphDeltas> h_delta_;
+  std::unique_ptr<Weld> weld_;
+};
+
+}  // namespace OpenMeshSkinned::detail
