@@ -57,7 +57,7 @@ Mesh::HalfedgeHandle interior_halfedge(const Mesh& mesh) {
         !mesh.is_boundary(mesh.to_vertex_handle(heh)) && a[0] != b[0] && a[0] > 0.2 && a[0] < 0.8)
       return heh;
   }
-  return {};
+  return Mesh::HalfedgeHandle();
 }
 
 }  // namespace
