@@ -135,7 +135,8 @@ json cap_strategy(const std::string& file, int cap, OpenMeshSkinned::CapStrategy
   OpenMeshSkinned::import_skinned(models_dir + "/" + file, original);
   const auto& clips = OpenMeshSkinned::clips(original);
   const auto sched = OpenMeshSkinned::make_pose_schedule(clips, 8, -1);
-  OpenMeshSkinned::example_poses(original) = OpenMeshSkinned::poses_at(OpenMeshSkinned::skeleton(original), clips, sched.examples);
+  OpenMeshSkinned::example_poses(original) =
+      OpenMeshSkinned::poses_at(OpenMeshSkinned::skeleton(original), clips, sched.examples);
   Mesh mesh = original;
   const double secs = seconds([&] { decimate_skinned(mesh, original.n_faces() / 4, cap, st); });
   mesh.garbage_collection();
@@ -143,11 +144,16 @@ json cap_strategy(const std::string& file, int cap, OpenMeshSkinned::CapStrategy
   double rms = 0.0;
   for (const auto& pose : frames)
     rms += OpenMeshSkinned::surface_distance(OpenMeshSkinned::posed_soup(original, pose),
-                                             OpenMeshSkinned::posed_soup(mesh, pose), 20000).rms;
+                                             OpenMeshSkinned::posed_soup(mesh, pose), 20000)
+               .rms;
   rms = 100.0 * rms / frames.size() / OpenMeshSkinned::bbox_diagonal(original);
-  return {{"workload", "cap-strategy"}, {"input", file}, {"cap", cap},
+  return {{"workload", "cap-strategy"},
+          {"input", file},
+          {"cap", cap},
           {"strategy", st == OpenMeshSkinned::CapStrategy::TopN ? "topn" : "greedy"},
-          {"triangles_out", mesh.n_faces()}, {"heldout_rms", rms}, {"seconds", secs}};
+          {"triangles_out", mesh.n_faces()},
+          {"heldout_rms", rms},
+          {"seconds", secs}};
 }
 
 }  // namespace

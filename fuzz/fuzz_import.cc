@@ -10,7 +10,8 @@
 #include <string>
 
 namespace {
-constexpr const char* kExtensions[] = {".x", ".md5mesh", ".fbx", ".gltf", ".glb", ".obj", ".dae", ".ply", ".smd", ".b3d"};
+constexpr const char* kExtensions[] = {".x",   ".md5mesh", ".fbx", ".gltf", ".glb",
+                                       ".obj", ".dae",     ".ply", ".smd",  ".b3d"};
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -93,7 +93,8 @@ public:
     const auto after = normals();
     const double min_cos = std::cos(max_angle_deg * M_PI / 180.0) - 1e-9;
     for (size_t i = 0; i < after.size(); ++i)
-      if (before_[i].norm() > 0 && (after[i].norm() == 0 || after[i].normalized().dot(before_[i].normalized()) < min_cos)) {
+      if (before_[i].norm() > 0 &&
+          (after[i].norm() == 0 || after[i].normalized().dot(before_[i].normalized()) < min_cos)) {
         ++flipped;
         break;
       }

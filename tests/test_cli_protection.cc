@@ -5,8 +5,8 @@
 #include "validate.hh"
 
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 #include <unistd.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <filesystem>
@@ -40,7 +40,8 @@ std::vector<std::string> files_in(const fs::path& d) {
 int error_lines(const std::string& out) {
   std::istringstream is(out);
   int n = 0;
-  for (std::string l; std::getline(is, l);) n += l.rfind("skinned-decimate: ", 0) == 0 && l.find(": warning: ") == std::string::npos;
+  for (std::string l; std::getline(is, l);)
+    n += l.rfind("skinned-decimate: ", 0) == 0 && l.find(": warning: ") == std::string::npos;
   return n;
 }
 const std::string simple_skin = std::string(OMSK_TEST_MODELS) + "/glTF2/simple_skin/simple_skin.gltf";
@@ -129,7 +130,8 @@ TEST(CliProtection, UnnamedRootNodesAreValidNodes) {
 
 TEST(CliProtection, AnUnreachableTargetIsStated) {
   const auto d = scratch("unreachable");
-  const auto r = cli(std::string("'") + OMSK_TEST_MODELS + "/X/Testwuson.X' -o out.glb --faces 1 --report r.json --quiet", d);
+  const auto r =
+      cli(std::string("'") + OMSK_TEST_MODELS + "/X/Testwuson.X' -o out.glb --faces 1 --report r.json --quiet", d);
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find("target of 1 triangles not reached"), std::string::npos) << r.out;
   nlohmann::json rep;
@@ -149,7 +151,8 @@ TEST(CliProtection, DroppedDataIsAWarningEvenWhenQuiet) {
   ASSERT_TRUE(w.WriteGltfSceneToFile(&m, (d / "oor.gltf").string(), true, true, true, false));
   const auto r = cli("oor.gltf -o out.glb --quiet", d);
   EXPECT_EQ(r.code, 0) << r.out;
-  EXPECT_NE(r.out.find("warning: oor.gltf: the reader dropped data: Some faces had out-of-range indices"), std::string::npos)
+  EXPECT_NE(r.out.find("warning: oor.gltf: the reader dropped data: Some faces had out-of-range indices"),
+            std::string::npos)
       << r.out;
 }
 

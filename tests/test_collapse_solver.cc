@@ -40,7 +40,8 @@ Mesh two_joint_sheet(int n, double d) {
     }
   for (int i = 0; i < n; ++i)
     for (int k = 0; k < n; ++k) {
-      auto a = vh[i * (n + 1) + k], b = vh[i * (n + 1) + k + 1], c = vh[(i + 1) * (n + 1) + k], e = vh[(i + 1) * (n + 1) + k + 1];
+      auto a = vh[i * (n + 1) + k], b = vh[i * (n + 1) + k + 1], c = vh[(i + 1) * (n + 1) + k],
+           e = vh[(i + 1) * (n + 1) + k + 1];
       mesh.add_face(a, b, e);
       mesh.add_face(a, e, c);
     }

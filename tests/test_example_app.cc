@@ -41,9 +41,9 @@ TEST(ExampleApp, RealCharacterToGlb) {
 
 TEST(ExampleApp, BadInputFailsWithOneLineAndNoOutput) {
   const auto d = scratch();
-  for (const std::string& args : {std::string("no-such-file.fbx out1.glb"), std::string("'") + OMSK_TEST_MODELS +
-                                                                    "/X/Testwuson.X' out2.glb 1.5",
-                                 std::string("'") + OMSK_TEST_MODELS + "/X/Testwuson.X' out3.txt"}) {
+  for (const std::string& args :
+       {std::string("no-such-file.fbx out1.glb"), std::string("'") + OMSK_TEST_MODELS + "/X/Testwuson.X' out2.glb 1.5",
+        std::string("'") + OMSK_TEST_MODELS + "/X/Testwuson.X' out3.txt"}) {
     SCOPED_TRACE(args);
     const auto r = run(args, d);
     EXPECT_NE(r.code, 0);

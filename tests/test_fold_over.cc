@@ -24,9 +24,9 @@ TEST(FoldOver, ARotationBelowTheLimitPassesAndOneAboveFails) {
 }
 
 TEST(FoldOver, CrossingTheOppositeEdgeFlipsAndADegenerateResultFolds) {
-  EXPECT_TRUE(face_folds(kC, kA, kB, Eigen::Vector3d(1, 1, 0), std::cos(M_PI * 0.99)));    // flipped: 180 degrees
+  EXPECT_TRUE(face_folds(kC, kA, kB, Eigen::Vector3d(1, 1, 0), std::cos(M_PI * 0.99)));      // flipped: 180 degrees
   EXPECT_TRUE(face_folds(kC, kA, kB, Eigen::Vector3d(0.5, 0.5, 0), std::cos(M_PI * 0.99)));  // on the edge: no area
-  EXPECT_FALSE(face_folds(kC, kA, kB, Eigen::Vector3d(0.2, 0.2, 0), std::cos(0.0)));           // moved in plane
+  EXPECT_FALSE(face_folds(kC, kA, kB, Eigen::Vector3d(0.2, 0.2, 0), std::cos(0.0)));         // moved in plane
 }
 
 TEST(FoldOver, AFaceThatHadNoAreaCannotTurn) {

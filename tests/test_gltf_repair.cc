@@ -7,8 +7,8 @@
 #include <OpenMeshSkinned/IO/Import.hh>
 
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 #include <unistd.h>
+#include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <fstream>

@@ -39,8 +39,10 @@ TEST_P(ArchiveRoundTrip, RebuildsTheSameCharacter) {
 }
 
 INSTANTIATE_TEST_SUITE_P(RealAssets, ArchiveRoundTrip,
-                         ::testing::Values("X/Testwuson.X", "glTF2/glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf",
-                                           "glTF2/BoxTextured-glTF/BoxTextured.gltf", "FBX/animation_with_skeleton.fbx"));
+                         ::testing::Values("X/Testwuson.X",
+                                           "glTF2/glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf",
+                                           "glTF2/BoxTextured-glTF/BoxTextured.gltf",
+                                           "FBX/animation_with_skeleton.fbx"));
 
 TEST(ImportArchive, RefusesBytesThatAreNotOne) {
   SkinnedMesh m;
@@ -48,10 +50,13 @@ TEST(ImportArchive, RefusesBytesThatAreNotOne) {
   EXPECT_THROW(load_import("", m, r), IOError);
   EXPECT_THROW(load_import(std::string(100, 'x'), m, r), IOError);
   SkinnedMesh a;
-  const std::string bytes = save_import(a = [] {
-    SkinnedMesh t;
-    import_skinned(model("X/Testwuson.X"), t);
-    return t;
-  }(), ImportReport{});
+  const std::string bytes = save_import(
+      a =
+          [] {
+            SkinnedMesh t;
+            import_skinned(model("X/Testwuson.X"), t);
+            return t;
+          }(),
+      ImportReport{});
   EXPECT_THROW(load_import(bytes.substr(0, bytes.size() / 2), m, r), IOError);
 }

@@ -54,7 +54,8 @@ std::string skinned_quad_gltf(const std::array<float, 4>& w0, const fs::path& ou
     m.bufferViews.push_back(v);
     return int(m.bufferViews.size()) - 1;
   };
-  auto accessor = [&](int v, int ctype, int type, size_t count, std::vector<double> mn = {}, std::vector<double> mx = {}) {
+  auto accessor = [&](int v, int ctype, int type, size_t count, std::vector<double> mn = {},
+                      std::vector<double> mx = {}) {
     tinygltf::Accessor a;
     a.bufferView = v;
     a.componentType = ctype;
@@ -71,7 +72,8 @@ std::string skinned_quad_gltf(const std::array<float, 4>& w0, const fs::path& ou
   const uint16_t idx[] = {0, 1, 2, 1, 3, 2};
   const float ibm[] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1};
   tinygltf::Primitive prim;
-  prim.attributes["POSITION"] = accessor(view(pos, sizeof pos, 34962), 5126, TINYGLTF_TYPE_VEC3, 4, {0, 0, 0}, {1, 1, 0});
+  prim.attributes["POSITION"] =
+      accessor(view(pos, sizeof pos, 34962), 5126, TINYGLTF_TYPE_VEC3, 4, {0, 0, 0}, {1, 1, 0});
   prim.attributes["JOINTS_0"] = accessor(view(joints, sizeof joints, 34962), 5123, TINYGLTF_TYPE_VEC4, 4);
   prim.attributes["WEIGHTS_0"] = accessor(view(weights, sizeof weights, 34962), 5126, TINYGLTF_TYPE_VEC4, 4);
   prim.indices = accessor(view(idx, sizeof idx, 34963), 5123, TINYGLTF_TYPE_SCALAR, 6);
@@ -192,12 +194,12 @@ TEST(Import, BadFilesGiveOneLineErrorsNamingTheFile) {
     std::string all((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     write_file(truncated, all.substr(0, all.size() / 2));
   }
-  for (const auto& [path, what] : std::vector<std::pair<std::string, std::string>>{
-           {missing, "does not exist"},
-           {empty.string(), "empty"},
-           {garbage.string(), "cannot be read"},
-           {truncated.string(), ""},
-           {scratch("").string(), "directory"}}) {
+  for (const auto& [path, what] :
+       std::vector<std::pair<std::string, std::string>>{{missing, "does not exist"},
+                                                        {empty.string(), "empty"},
+                                                        {garbage.string(), "cannot be read"},
+                                                        {truncated.string(), ""},
+                                                        {scratch("").string(), "directory"}}) {
     SCOPED_TRACE(path);
     const std::string err = import_error(path);
     ASSERT_FALSE(err.empty()) << "no error for " << path;

@@ -1,7 +1,7 @@
 // The isolated reader: a reader crash, a runaway allocation or an endless read is an IOError, and a
 // good file comes back exactly as the in-process import reads it.
-#include <OpenMeshSkinned/IO/ImportArchive.hh>
 #include <OpenMeshSkinned/IO/Import.hh>
+#include <OpenMeshSkinned/IO/ImportArchive.hh>
 
 #include <gtest/gtest.h>
 

@@ -82,7 +82,8 @@ TEST(Baselines, HeldOutErrorRanksSkinnedFirstOnTheBendingLeg) {
   ::testing::Test::RecordProperty("skinned", std::to_string(skinned));
   ::testing::Test::RecordProperty("dsd", std::to_string(dsd));
   ::testing::Test::RecordProperty("rest", std::to_string(rest));
-  std::cout << "held-out RMS (fraction of diagonal): skinned " << skinned << ", dsd " << dsd << ", rest " << rest << ", decoro " << decoro << "\n";
+  std::cout << "held-out RMS (fraction of diagonal): skinned " << skinned << ", dsd " << dsd << ", rest " << rest
+            << ", decoro " << decoro << "\n";
   EXPECT_LE(skinned, dsd);
   EXPECT_LE(skinned, rest);
   EXPECT_LE(dsd, rest);

@@ -84,8 +84,8 @@ TEST(ModSkinnedQuadric, InvariantsAfterDecimatingARealCharacterToTenPercent) {
   Mesh mesh = omsk_test::load_character("X/Testwuson.X", 8);
   const auto r = omsk_test::decimate(mesh, 0.1);
   EXPECT_LE(r.faces_after, static_cast<size_t>(0.12 * r.faces_before));
-  EXPECT_EQ(r.flipped, 0u) << "collapses that turned a face by more than 90 degrees in some pose (forced "
-                           << r.forced << ", fallbacks " << r.fallbacks << ")";
+  EXPECT_EQ(r.flipped, 0u) << "collapses that turned a face by more than 90 degrees in some pose (forced " << r.forced
+                           << ", fallbacks " << r.fallbacks << ")";
   omsk_test::expect_valid_skin(mesh, 4);
 }
 

@@ -86,6 +86,6 @@ TEST(Morph, DecimationKeepsOneOffsetPerTargetOnEveryVertex) {
     ASSERT_TRUE(mesh.property(hd, vh)[0].allFinite());
     after = std::max(after, mesh.property(hd, vh)[0].norm());
   }
-  EXPECT_GT(after, 0.5f * before);   // the bulge is still there
+  EXPECT_GT(after, 0.5f * before);     // the bulge is still there
   EXPECT_LE(after, 1.0001f * before);  // and interpolation never exaggerates it
 }

@@ -32,8 +32,10 @@ TEST(NonManifold, BowtieVertexGetsOneCopyPerExtraFan) {
   int mats = 0;
   for (auto fh : mesh.faces()) {
     mats += mesh.property(h_fmat, fh);
-    if (mesh.property(h_fmat, fh) == 7)
-      for (auto heh : mesh.fh_range(fh)) EXPECT_EQ(mesh.texcoord2D(heh), SkinnedMesh::TexCoord2D(0.25f, 0.75f));
+    if (mesh.property(h_fmat, fh) != 7) continue;
+    for (auto heh : mesh.fh_range(fh)) {
+      EXPECT_EQ(mesh.texcoord2D(heh), SkinnedMesh::TexCoord2D(0.25f, 0.75f));
+    }
   }
   EXPECT_EQ(mats, 10);
   // The copy carries the centre's position and skin.

@@ -28,7 +28,7 @@ TEST(ReaderLog, FacesWithOutOfRangeIndicesAreNotDroppedSilently) {
   const auto& view = m.bufferViews[acc.bufferView];
   ASSERT_EQ(acc.componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
   auto* first = reinterpret_cast<uint16_t*>(m.buffers[view.buffer].data.data() + view.byteOffset + acc.byteOffset);
-  *first = 99;  // the mesh has 10 vertices
+  *first = 99;           // the mesh has 10 vertices
   tinygltf::TinyGLTF w;  // .gltf with the buffers inline (a GLB holds one buffer, simple_skin has four)
   ASSERT_TRUE(w.WriteGltfSceneToFile(&m, (d / "oor.gltf").string(), true, true, true, false));
 

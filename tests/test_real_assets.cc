@@ -65,7 +65,8 @@ const std::map<std::string, std::string>& characters() {
       omsk_fixtures::attach_rigid_box(m, "Neck", 0.3);
       omsk_fixtures::wrap_under_rotated_root(m, 30.0, 0.001);
     });
-    out["morph_cube"] = std::string(OMSK_TEST_MODELS) + "/glTF2/glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf";
+    out["morph_cube"] =
+        std::string(OMSK_TEST_MODELS) + "/glTF2/glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf";
     out["simple_skin"] = std::string(OMSK_TEST_MODELS) + "/glTF2/simple_skin/simple_skin.gltf";
     return out;
   }();
@@ -121,7 +122,8 @@ TEST_P(RealCharacter, LibraryPosesItAsTheGltfSpecDoes) {
 TEST_P(RealCharacter, RatioOneIsLosslessAndValid) {
   const std::string& file = characters().at(GetParam());
   const fs::path out = scratch() / (GetParam() + "_r1.glb");
-  const auto r = omsk_test::run_command(OMSK_CLI_EXE, "'" + file + "' -o '" + out.string() + "' --ratio 1 --quiet", scratch());
+  const auto r =
+      omsk_test::run_command(OMSK_CLI_EXE, "'" + file + "' -o '" + out.string() + "' --ratio 1 --quiet", scratch());
   ASSERT_EQ(r.code, 0) << r.out;
   omsk_test::expect_valid_gltf(out.string());
   const tinygltf::Model in = omsk_spec::load(file), res = omsk_spec::load(out.string());
@@ -140,7 +142,8 @@ TEST(RealCharacters, HeldOutErrorIsWhatTheSpecPosingShows) {
   const std::string file = characters().at("rotated_root");
   const fs::path out = scratch() / "rot_lod.glb", rep = scratch() / "rot_lod.json";
   const auto r = omsk_test::run_command(
-      OMSK_CLI_EXE, "'" + file + "' -o '" + out.string() + "' --ratio 0.2 --poses 6 --quiet --report '" + rep.string() + "'",
+      OMSK_CLI_EXE,
+      "'" + file + "' -o '" + out.string() + "' --ratio 0.2 --poses 6 --quiet --report '" + rep.string() + "'",
       scratch());
   ASSERT_EQ(r.code, 0) << r.out;
   omsk_test::expect_valid_gltf(out.string());
@@ -171,7 +174,8 @@ TEST(RealCharacters, HeldOutErrorIsWhatTheSpecPosingShows) {
 TEST(RealCharacters, LodsKeepMorphTargetsAndTheirClips) {
   const std::string file = characters().at("everything");
   const fs::path out = scratch() / "all.glb";
-  const auto r = omsk_test::run_command(OMSK_CLI_EXE, "'" + file + "' -o '" + out.string() + "' --lods 0.5,0.2 --quiet", scratch());
+  const auto r = omsk_test::run_command(OMSK_CLI_EXE, "'" + file + "' -o '" + out.string() + "' --lods 0.5,0.2 --quiet",
+                                        scratch());
   ASSERT_EQ(r.code, 0) << r.out;
   for (const char* name : {"all_lod1.glb", "all_lod2.glb"}) {
     const std::string lod = (scratch() / name).string();

@@ -39,7 +39,8 @@ void expect_round_trip(const std::string& rel, const std::string& ext) {
     std::sort(bs.begin(), bs.end(), [](const auto& x, const auto& y) { return x.first.x() < y.first.x(); });
     for (auto vh : a.vertices()) {
       const Eigen::Vector3d p = to_eigen(a.point(vh));
-      auto it = std::lower_bound(bs.begin(), bs.end(), p.x() - tol, [](const auto& e, double x) { return e.first.x() < x; });
+      auto it =
+          std::lower_bound(bs.begin(), bs.end(), p.x() - tol, [](const auto& e, double x) { return e.first.x() < x; });
       for (; it != bs.end() && it->first.x() <= p.x() + tol; ++it)
         if ((it->first - p).norm() <= tol) partners[vh.idx()].push_back(it->second);
       ASSERT_FALSE(partners[vh.idx()].empty()) << "vertex " << vh.idx() << " lost in the round trip";

@@ -18,7 +18,8 @@ TEST(Clip, InterpolatesTranslationLinearlyAndRotationBySlerp) {
   ch.translation_times = {0.0, 2.0};
   ch.translations = {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(4, 0, 0)};
   ch.rotation_times = {0.0, 2.0};
-  ch.rotations = {Eigen::Quaterniond::Identity(), Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()))};
+  ch.rotations = {Eigen::Quaterniond::Identity(),
+                  Eigen::Quaterniond(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()))};
   clip.channels.push_back(ch);
   const auto locals = sample_locals(skel, clip, 1.0);
   EXPECT_NEAR(locals[0](0, 3), 2.0, 1e-12);

@@ -81,11 +81,13 @@ TEST(SkinnedQuadricSolve, FindsThePositionAndWeightThatFitEveryPose) {
   EXPECT_NEAR(r.weights.weight_of(1), 0.3, 1e-4);
   EXPECT_NEAR(r.weights.sum(), 1.0, 1e-12);
   EXPECT_LT(r.error, 1e-6);
-  EXPECT_NEAR(r.error, skinned_energy(p, r.position, [&] {
-                WeightSolver::Vector a(2);
-                a << r.weights.weight_of(0), r.weights.weight_of(1);
-                return a;
-              }()),
+  EXPECT_NEAR(r.error,
+              skinned_energy(p, r.position,
+                             [&] {
+                               WeightSolver::Vector a(2);
+                               a << r.weights.weight_of(0), r.weights.weight_of(1);
+                               return a;
+                             }()),
               1e-12);
 }
 
@@ -164,7 +166,8 @@ TEST(TruncatedSolve, LeavesUnconstrainedDirectionsAtTheReference) {
   EXPECT_NEAR(x.y(), 7.0, 1e-12);
   EXPECT_NEAR(x.z(), 5.0, 1e-12);
   EXPECT_FALSE(truncated_solve(Eigen::Matrix3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), x));
-  ASSERT_TRUE(truncated_solve(Eigen::Matrix3d::Identity(), Eigen::Vector3d(1, 2, 3), Eigen::Vector3d::Zero(), x, &full));
+  ASSERT_TRUE(
+      truncated_solve(Eigen::Matrix3d::Identity(), Eigen::Vector3d(1, 2, 3), Eigen::Vector3d::Zero(), x, &full));
   EXPECT_TRUE(full);
   EXPECT_NEAR((x - Eigen::Vector3d(1, 2, 3)).norm(), 0.0, 1e-12);
 }

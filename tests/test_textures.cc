@@ -112,7 +112,8 @@ TEST(Textures, MissingImageIsAWarningAndTheMaterialStays) {
   SkinnedMesh mesh;
   const auto rep = import_skinned(input, mesh);
   bool warned = false;
-  for (const auto& w : rep.warnings) warned |= w.find("gone.png") != std::string::npos && w.find("not found") != std::string::npos;
+  for (const auto& w : rep.warnings)
+    warned |= w.find("gone.png") != std::string::npos && w.find("not found") != std::string::npos;
   EXPECT_TRUE(warned);
   const fs::path out = dir / "missing.glb";
   lod_of(input, out);

@@ -42,12 +42,9 @@ TEST(Validate, RejectsEachKindOfBadSkinWithAPreciseMessage) {
     const char* expect;
   };
   const std::vector<Case> cases = {
-      {{{0, std::nan("")}}, "non-finite"},
-      {{{0, 1.5}, {1, -0.5}}, "negative"},
-      {{{0, 0.5}}, "sum to 0.5"},
-      {{{0, 0.0}}, "sum to 0"},
-      {{{7, 1.0}}, "out of range"},
-      {{}, "no bone influences"},
+      {{{0, std::nan("")}}, "non-finite"}, {{{0, 1.5}, {1, -0.5}}, "negative"},
+      {{{0, 0.5}}, "sum to 0.5"},          {{{0, 0.0}}, "sum to 0"},
+      {{{7, 1.0}}, "out of range"},        {{}, "no bone influences"},
   };
   for (const auto& c : cases) {
     Mesh mesh = two_triangles();

@@ -47,4 +47,3 @@ TEST(WeightRules, NearestEndpointCopiesAndEveryRuleRespectsTheCap) {
     for (const auto& jw : m) EXPECT_GT(jw.weight, 0.0);
   }
 }
-

@@ -17,8 +17,8 @@ namespace OpenMeshSkinned {
  *
  *  When a collapse happens, the surviving vertex moves to the optimal rest position and takes the
  *  optimal weights, its corner UVs (per-halfedge texcoords, when the mesh has them) are re-interpolated
- *  from the faces it came from, chart by chart, and its per-pose quadrics become the sums; the weights respect the cap set by
- *  ModWeightCapT if that module is present (otherwise the storage capacity, Influences::kCapacity).
+ *  from the faces it came from, chart by chart, and its per-pose quadrics become the sums; the weights respect the cap
+ * set by ModWeightCapT if that module is present (otherwise the storage capacity, Influences::kCapacity).
  *
  *  \code
  *  OpenMesh::Decimater::DecimaterT<Mesh> dec(mesh);

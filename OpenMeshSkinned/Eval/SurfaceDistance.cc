@@ -48,15 +48,16 @@ std::vector<Point> samples(const TriangleSoup& from, size_t n, std::mt19937_64& 
   if (total <= 0.0) return pts;
   std::uniform_real_distribution<double> u(0.0, 1.0);
   for (size_t s = 0; s < n; ++s) {
-    const size_t t = std::min(cum.size() - 1, size_t(std::lower_bound(cum.begin(), cum.end(), u(rng) * total) - cum.begin()));
+    const size_t t =
+        std::min(cum.size() - 1, size_t(std::lower_bound(cum.begin(), cum.end(), u(rng) * total) - cum.begin()));
     double r1 = u(rng), r2 = u(rng);
     if (r1 + r2 > 1.0) {
       r1 = 1.0 - r1;
       r2 = 1.0 - r2;
     }
     const auto& f = from.triangles[t];
-    const Eigen::Vector3d p = from.points[f[0]] + r1 * (from.points[f[1]] - from.points[f[0]]) +
-                              r2 * (from.points[f[2]] - from.points[f[0]]);
+    const Eigen::Vector3d p =
+        from.points[f[0]] + r1 * (from.points[f[1]] - from.points[f[0]]) + r2 * (from.points[f[2]] - from.points[f[0]]);
     pts.emplace_back(p.x(), p.y(), p.z());
   }
   return pts;

@@ -55,7 +55,8 @@ void write_clips(const SkinnedMesh& mesh, int mesh_node, BufferWriter& buf, tiny
       }
       std::vector<float> tf(times.begin(), times.end());
       tinygltf::AnimationSampler s;
-      s.input = buf.add(tf, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, tf.size(), 0, {tf.front()}, {tf.back()});
+      s.input =
+          buf.add(tf, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, tf.size(), 0, {tf.front()}, {tf.back()});
       s.output = buf.add(w, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, w.size(), 0);
       s.interpolation = "LINEAR";
       anim.samplers.push_back(s);

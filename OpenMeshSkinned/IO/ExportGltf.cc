@@ -7,13 +7,13 @@
 
 #include <tiny_gltf.h>
 
+#include <unistd.h>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <map>
-#include <unistd.h>
 
 namespace OpenMeshSkinned {
 namespace {

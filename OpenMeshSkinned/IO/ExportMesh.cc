@@ -155,8 +155,12 @@ tinygltf::Mesh write_mesh(const SkinnedMesh& mesh, BufferWriter& buf, const std:
     if (mat >= 0) prim.material = mat;
     prim.attributes["POSITION"] =
         buf.add(pos, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, nv, TINYGLTF_TARGET_ARRAY_BUFFER, mn, mx);
-    if (has_n) prim.attributes["NORMAL"] = buf.add(nrm, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, nv, TINYGLTF_TARGET_ARRAY_BUFFER);
-    if (has_uv) prim.attributes["TEXCOORD_0"] = buf.add(uv, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, nv, TINYGLTF_TARGET_ARRAY_BUFFER);
+    if (has_n)
+      prim.attributes["NORMAL"] =
+          buf.add(nrm, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, nv, TINYGLTF_TARGET_ARRAY_BUFFER);
+    if (has_uv)
+      prim.attributes["TEXCOORD_0"] =
+          buf.add(uv, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, nv, TINYGLTF_TARGET_ARRAY_BUFFER);
     for (int set = 0; set < slots / 4; ++set) {
       std::vector<uint16_t> js;
       std::vector<float> ws;

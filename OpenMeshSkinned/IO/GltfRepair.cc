@@ -66,8 +66,9 @@ void link_resources(const json& doc, const fs::path& source_dir, const fs::path&
       bool outside = rel.is_absolute() || uri.find(':') != std::string::npos;
       for (const auto& part : rel) outside |= part == "..";
       if (outside)
-        throw IOError(path + ": has a skin without inverseBindMatrices (which assimp 5.2 cannot read) and refers to \"" +
-                      uri + "\" outside its folder, so it cannot be repaired on the way in");
+        throw IOError(path +
+                      ": has a skin without inverseBindMatrices (which assimp 5.2 cannot read) and refers to \"" + uri +
+                      "\" outside its folder, so it cannot be repaired on the way in");
       const fs::path target = fs::absolute(source_dir / rel);
       if (!fs::exists(target)) continue;  // the reader reports the missing file
       fs::create_directories((scratch / rel).parent_path());
@@ -99,7 +100,8 @@ RepairedGltf::RepairedGltf(const std::string& path) {
   if (doc.is_discarded() || !doc.is_object() || !add_identity_inverse_binds(doc)) return;  // the reader judges
 
   std::string tmpl = (fs::temp_directory_path() / "omsk-gltf-XXXXXX").string();
-  if (!::mkdtemp(tmpl.data())) throw IOError(path + ": no temporary folder for a repaired copy: " + std::strerror(errno));
+  if (!::mkdtemp(tmpl.data()))
+    throw IOError(path + ": no temporary folder for a repaired copy: " + std::strerror(errno));
   dir_ = tmpl;
   try {
     const fs::path scratch(dir_);

@@ -26,7 +26,8 @@ void check_gltf_weights(const std::string& path, const std::string& shown_as) {
   loader.SetImageLoader(skip_image, nullptr);
   tinygltf::Model model;
   std::string err, warn;
-  const bool ok = glb ? loader.LoadBinaryFromFile(&model, &err, &warn, path) : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+  const bool ok =
+      glb ? loader.LoadBinaryFromFile(&model, &err, &warn, path) : loader.LoadASCIIFromFile(&model, &err, &warn, path);
   if (!ok) return;
   for (size_t m = 0; m < model.meshes.size(); ++m)
     for (const auto& prim : model.meshes[m].primitives)

@@ -14,9 +14,9 @@
 
 #include <OpenMesh/Core/System/omstream.hh>
 
-#include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
+#include <assimp/Importer.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -30,8 +30,8 @@ using namespace detail;
 // assimp's reading, its error made one line of a readable length: a reader may quote half the file back.
 const aiScene* read_scene(Assimp::Importer& importer, const std::string& path, const std::string& read_path) {
   // No PreTransformVertices or OptimizeGraph: both would destroy the skeleton we need.
-  const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
-                         aiProcess_ValidateDataStructure;
+  const unsigned flags =
+      aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
   const aiScene* scene = importer.ReadFile(read_path, flags);
   if (!scene) {
     std::string msg = importer.GetErrorString();
@@ -46,7 +46,8 @@ const aiScene* read_scene(Assimp::Importer& importer, const std::string& path, c
   bool stand_in = scene->mNumMaterials > 0;
   for (unsigned m = 0; m < scene->mNumMaterials; ++m) {
     aiString name;
-    stand_in &= scene->mMaterials[m]->Get(AI_MATKEY_NAME, name) == AI_SUCCESS && std::string(name.C_Str()) == "SkeletonMaterial";
+    stand_in &= scene->mMaterials[m]->Get(AI_MATKEY_NAME, name) == AI_SUCCESS &&
+                std::string(name.C_Str()) == "SkeletonMaterial";
   }
   if (stand_in) throw IOError(path + ": contains no mesh, only a skeleton and its animation (nothing to decimate)");
   return scene;
@@ -110,7 +111,8 @@ void finish_mesh(SkinnedMesh& mesh, ImportReport& rep, const std::string& path) 
   mesh.update_face_normals();
   for (auto fh : mesh.faces()) {
     const auto n = mesh.normal(fh);
-    if (!std::isfinite(n[0]) || !std::isfinite(n[1]) || !std::isfinite(n[2])) mesh.set_normal(fh, SkinnedMesh::Normal(0, 0, 0));
+    if (!std::isfinite(n[0]) || !std::isfinite(n[1]) || !std::isfinite(n[2]))
+      mesh.set_normal(fh, SkinnedMesh::Normal(0, 0, 0));
   }
   rep.zero_area_faces = 0;
   for (auto fh : mesh.faces()) rep.zero_area_faces += mesh.calc_face_area(fh) == 0.0;

@@ -33,17 +33,17 @@ struct ImportOptions {
 /// What the importer did to the data, for the user to read.
 struct ImportReport {
   size_t source_meshes = 0;
-  size_t source_vertices = 0;         ///< vertices as stored in the file (split at seams)
-  size_t welded_vertices = 0;         ///< OpenMesh vertices after welding split copies
+  size_t source_vertices = 0;  ///< vertices as stored in the file (split at seams)
+  size_t welded_vertices = 0;  ///< OpenMesh vertices after welding split copies
   size_t faces = 0;
-  size_t degenerate_faces_skipped = 0;   ///< triangles with a repeated vertex after welding
-  size_t nonmanifold_vertices_added = 0; ///< copies made so that faces on complex edges are kept
-  size_t unweighted_vertices = 0;        ///< vertices of a skinned mesh with no bone: bound to the mesh's node
-  size_t truncated_vertices = 0;         ///< vertices with more than Influences::kCapacity bones
-  size_t renormalized_vertices = 0;     ///< vertices whose weight sum was not 1 (rescaled)
+  size_t degenerate_faces_skipped = 0;    ///< triangles with a repeated vertex after welding
+  size_t nonmanifold_vertices_added = 0;  ///< copies made so that faces on complex edges are kept
+  size_t unweighted_vertices = 0;         ///< vertices of a skinned mesh with no bone: bound to the mesh's node
+  size_t truncated_vertices = 0;          ///< vertices with more than Influences::kCapacity bones
+  size_t renormalized_vertices = 0;       ///< vertices whose weight sum was not 1 (rescaled)
   double min_weight_sum = 1.0, max_weight_sum = 1.0;  ///< range of the sums as found in the file
-  size_t zero_area_faces = 0;            ///< triangles of zero area kept (three distinct, collinear vertices)
-  size_t twin_joints = 0;  ///< joints duplicated because two skins bind the same node differently
+  size_t zero_area_faces = 0;  ///< triangles of zero area kept (three distinct, collinear vertices)
+  size_t twin_joints = 0;      ///< joints duplicated because two skins bind the same node differently
   size_t morph_targets = 0;
   size_t joints = 0;
   size_t clips = 0;

@@ -26,31 +26,47 @@ void serialize(Ar& ar, Eigen::Quaterniond& q) {
 namespace OpenMeshSkinned {
 
 template <class Ar>
-void serialize(Ar& ar, Joint& j) { ar(j.name, j.parent, j.rest_local, j.inverse_bind); }
+void serialize(Ar& ar, Joint& j) {
+  ar(j.name, j.parent, j.rest_local, j.inverse_bind);
+}
 template <class Ar>
-void serialize(Ar& ar, Skeleton& s) { ar(s.joints); }
+void serialize(Ar& ar, Skeleton& s) {
+  ar(s.joints);
+}
 template <class Ar>
 void serialize(Ar& ar, Channel& c) {
   ar(c.joint, c.translation_times, c.translations, c.rotation_times, c.rotations, c.scale_times, c.scales);
 }
 template <class Ar>
-void serialize(Ar& ar, MorphChannel& c) { ar(c.target, c.times, c.weights); }
+void serialize(Ar& ar, MorphChannel& c) {
+  ar(c.target, c.times, c.weights);
+}
 template <class Ar>
-void serialize(Ar& ar, Clip& c) { ar(c.name, c.duration, c.channels, c.morph_channels); }
+void serialize(Ar& ar, Clip& c) {
+  ar(c.name, c.duration, c.channels, c.morph_channels);
+}
 template <class Ar>
-void serialize(Ar& ar, Pose& p) { ar(p.label, p.joint, p.morph_weights); }
+void serialize(Ar& ar, Pose& p) {
+  ar(p.label, p.joint, p.morph_weights);
+}
 template <class Ar>
-void serialize(Ar& ar, MorphTarget& t) { ar(t.name); }
+void serialize(Ar& ar, MorphTarget& t) {
+  ar(t.name);
+}
 template <class Ar>
-void serialize(Ar& ar, Image& i) { ar(i.name, i.mime_type, i.data); }
+void serialize(Ar& ar, Image& i) {
+  ar(i.name, i.mime_type, i.data);
+}
 template <class Ar>
-void serialize(Ar& ar, Material& m) { ar(m.name, m.base_color, m.base_color_texture, m.base_color_image); }
+void serialize(Ar& ar, Material& m) {
+  ar(m.name, m.base_color, m.base_color_texture, m.base_color_image);
+}
 template <class Ar>
 void serialize(Ar& ar, ImportReport& r) {
   ar(r.source_meshes, r.source_vertices, r.welded_vertices, r.faces, r.degenerate_faces_skipped,
      r.nonmanifold_vertices_added, r.unweighted_vertices, r.truncated_vertices, r.renormalized_vertices,
-     r.min_weight_sum, r.max_weight_sum, r.zero_area_faces, r.twin_joints, r.morph_targets, r.joints, r.clips,
-     r.rigid, r.warnings);
+     r.min_weight_sum, r.max_weight_sum, r.zero_area_faces, r.twin_joints, r.morph_targets, r.joints, r.clips, r.rigid,
+     r.warnings);
 }
 
 namespace {
@@ -65,7 +81,7 @@ struct Flat {
   std::vector<int32_t> face_vertices, face_material;
   std::vector<double> corner_normals;  // 3 x 3 per face
   std::vector<float> corner_uvs;       // 3 x 2 per face
-  std::vector<int32_t> inf_joints;                // Influences::kCapacity per vertex, -1 = none
+  std::vector<int32_t> inf_joints;     // Influences::kCapacity per vertex, -1 = none
   std::vector<double> inf_weights;
   std::vector<MorphTarget> morph_targets;
   std::vector<MorphDeltas> morph_deltas;
@@ -151,7 +167,8 @@ void load_import(const std::string& bytes, SkinnedMesh& mesh, ImportReport& repo
   for (size_t v = 0; v < nv; ++v) {
     const auto vh = mesh.add_vertex(SkinnedMesh::Point(f.points[3 * v], f.points[3 * v + 1], f.points[3 * v + 2]));
     Influences inf;
-    for (size_t k = 0; k < kc && f.inf_joints[kc * v + k] >= 0; ++k) inf.push(f.inf_joints[kc * v + k], f.inf_weights[kc * v + k]);
+    for (size_t k = 0; k < kc && f.inf_joints[kc * v + k] >= 0; ++k)
+      inf.push(f.inf_joints[kc * v + k], f.inf_weights[kc * v + k]);
     mesh.property(h_inf, vh) = inf;
     if (!f.morph_targets.empty()) mesh.property(h_delta, vh) = f.morph_deltas.at(v);
   }
@@ -176,7 +193,8 @@ void load_import(const std::string& bytes, SkinnedMesh& mesh, ImportReport& repo
   mesh.update_face_normals();
   for (auto fh : mesh.faces()) {
     const auto n = mesh.normal(fh);
-    if (!std::isfinite(n[0]) || !std::isfinite(n[1]) || !std::isfinite(n[2])) mesh.set_normal(fh, SkinnedMesh::Normal(0, 0, 0));
+    if (!std::isfinite(n[0]) || !std::isfinite(n[1]) || !std::isfinite(n[2]))
+      mesh.set_normal(fh, SkinnedMesh::Normal(0, 0, 0));
   }
   if (!f.morph_targets.empty()) morph_targets(mesh) = std::move(f.morph_targets);
   skeleton(mesh) = std::move(f.skeleton);

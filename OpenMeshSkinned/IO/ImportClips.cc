@@ -78,7 +78,9 @@ void read_clips(const aiScene* scene, const SceneNodes& sn, const JointMap& join
         }
         used = true;
       }
-      if (!used) warnings.push_back("clip \"" + clip.name + "\": morph channel \"" + node_name + "\" names no mesh node: not kept");
+      if (!used)
+        warnings.push_back("clip \"" + clip.name + "\": morph channel \"" + node_name +
+                           "\" names no mesh node: not kept");
     }
     clips(mesh).push_back(std::move(clip));
   }

@@ -62,7 +62,8 @@ GeometryBuilder::~GeometryBuilder() = default;
 // the one that carries the most skin weight, which is also the one a round trip through our own export
 // maps to identity. Vertices are stored there and each bone's inverse bind becomes O_k B^-1, so posing
 // J_k(t) O_k B^-1 (B v) is exact whichever was chosen.
-Eigen::Matrix4d GeometryBuilder::bind_space(const aiMesh* am, const SceneNodes& sn, const JointMap& joints, int node) const {
+Eigen::Matrix4d GeometryBuilder::bind_space(const aiMesh* am, const SceneNodes& sn, const JointMap& joints,
+                                            int node) const {
   Eigen::Matrix4d B = sn.global[node];
   std::vector<std::pair<Eigen::Matrix4d, double>> spaces;  // candidate, weight agreeing with it
   for (unsigned b = 0; b < am->mNumBones; ++b) {
@@ -104,10 +105,11 @@ std::vector<Influences> GeometryBuilder::read_weights(const aiMesh* am, JointMap
                    " of a mesh with " + std::to_string(am->mNumVertices) + " vertices");
       const double wt = vw.mWeight;
       if (!std::isfinite(wt))
-        throw fail("vertex " + std::to_string(vw.mVertexId) + " has a non-finite weight for bone \"" + bone->mName.C_Str() + "\"");
-      if (wt < 0.0)
-        throw fail("vertex " + std::to_string(vw.mVertexId) + " has negative weight " + std::to_string(wt) + " for bone \"" +
+        throw fail("vertex " + std::to_string(vw.mVertexId) + " has a non-finite weight for bone \"" +
                    bone->mName.C_Str() + "\"");
+      if (wt < 0.0)
+        throw fail("vertex " + std::to_string(vw.mVertexId) + " has negative weight " + std::to_string(wt) +
+                   " for bone \"" + bone->mName.C_Str() + "\"");
       touched[vw.mVertexId] = 1;
       if (wt == 0.0) continue;
       if (!inf[vw.mVertexId].add_keeping_heaviest(j, wt)) over_capacity.push_back(vw.mVertexId);
@@ -153,18 +155,20 @@ void GeometryBuilder::add(const aiScene* scene, const SceneNodes& sn, JointMap& 
   for (unsigned v = 0; v < am->mNumVertices; ++v) {
     const aiVector3D& p = am->mVertices[v];
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-      throw IOError(path_ + ": vertex " + std::to_string(v) + " of mesh \"" + am->mName.C_Str() + "\" has a non-finite position");
+      throw IOError(path_ + ": vertex " + std::to_string(v) + " of mesh \"" + am->mName.C_Str() +
+                    "\" has a non-finite position");
     const Eigen::Vector3d q = (B * Eigen::Vector4d(p.x, p.y, p.z, 1.0)).head<3>();
     WeldKey key{{q.x(), q.y(), q.z()}, inf[v], {}};
     if (n_targets_ > 0) {
       key.deltas.assign(n_targets_, Eigen::Vector3f::Zero());
       for (unsigned t = 0; t < am->mNumAnimMeshes; ++t) {
         const aiAnimMesh* an = am->mAnimMeshes[t];
-        if (!an->mVertices) continue;  // a target of normals only: no offset
+        if (!an->mVertices) continue;               // a target of normals only: no offset
         const aiVector3D d = an->mVertices[v] - p;  // assimp stores the target's positions, not offsets
         const Eigen::Vector3d bd = B.topLeftCorner<3, 3>() * Eigen::Vector3d(d.x, d.y, d.z);
         if (!bd.allFinite())
-          throw IOError(path_ + ": morph target " + std::to_string(t) + " has a non-finite position at vertex " + std::to_string(v));
+          throw IOError(path_ + ": morph target " + std::to_string(t) + " has a non-finite position at vertex " +
+                        std::to_string(v));
         key.deltas[target_base + t] = bd.cast<float>();
       }
     }
@@ -200,7 +204,8 @@ void GeometryBuilder::add_faces(const aiMesh* am, const std::vector<SkinnedMesh:
       for (auto& vh : corner_vh) vh = copy_vertex(mesh_, vh);
       rep_.nonmanifold_vertices_added += 3;
       fh = mesh_.add_face(corner_vh);
-      if (!fh.is_valid()) throw IOError(path_ + ": face " + std::to_string(f) + " cannot be added even with copied vertices");
+      if (!fh.is_valid())
+        throw IOError(path_ + ": face " + std::to_string(f) + " cannot be added even with copied vertices");
     }
     mesh_.property(h_fmat_, fh) = static_cast<int>(am->mMaterialIndex);
     for (auto heh : mesh_.fh_range(fh)) {

@@ -26,8 +26,10 @@ public:
 
 private:
   Eigen::Matrix4d bind_space(const aiMesh* am, const SceneNodes& sn, const JointMap& joints, int node) const;
-  std::vector<Influences> read_weights(const aiMesh* am, JointMap& joints, const Eigen::Matrix4d& B_inv, int node_joint);
-  void add_faces(const aiMesh* am, const std::vector<SkinnedMesh::VertexHandle>& vmap, const Eigen::Matrix3d& normal_matrix);
+  std::vector<Influences> read_weights(const aiMesh* am, JointMap& joints, const Eigen::Matrix4d& B_inv,
+                                       int node_joint);
+  void add_faces(const aiMesh* am, const std::vector<SkinnedMesh::VertexHandle>& vmap,
+                 const Eigen::Matrix3d& normal_matrix);
 
   struct Weld;
   SkinnedMesh& mesh_;

@@ -2,8 +2,8 @@
 
 #include "OpenMeshSkinned/IO/ImportArchive.hh"
 
-#include <assimp/Importer.hpp>
 #include <assimp/importerdesc.h>
+#include <assimp/Importer.hpp>
 
 #include <poll.h>
 #include <signal.h>
@@ -126,7 +126,8 @@ ImportReport import_isolated(const std::string& path, const std::string& read_pa
   if (timed_out)
     throw fail("the reader took longer than " + std::to_string(int(opt.time_limit_seconds)) + " s reading it" + format);
   const std::string limit = opt.memory_limit_mb ? " (limit " + std::to_string(opt.memory_limit_mb) + " MB)" : "";
-  if (!bytes.empty() && bytes[0] == kOutOfMemory) throw fail("the reader ran out of memory" + limit + " reading it" + format);
+  if (!bytes.empty() && bytes[0] == kOutOfMemory)
+    throw fail("the reader ran out of memory" + limit + " reading it" + format);
   if (WIFSIGNALED(status)) {
     const int sig = WTERMSIG(status);
     const char* name = sigabbrev_np(sig);

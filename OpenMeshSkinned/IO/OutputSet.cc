@@ -40,9 +40,8 @@ std::string OutputSet::add(const std::string& path) {
 
   const fs::path dir = fs::absolute(p).parent_path();
   if (!fs::is_directory(dir, ec)) throw IOError(path + ": folder " + dir.string() + " does not exist");
-  const fs::path staged =
-      dir / ("." + p.stem().string() + ".omsk-" + std::to_string(::getpid()) + "-" + std::to_string(entries_.size()) +
-             p.extension().string());
+  const fs::path staged = dir / ("." + p.stem().string() + ".omsk-" + std::to_string(::getpid()) + "-" +
+                                 std::to_string(entries_.size()) + p.extension().string());
   {
     std::ofstream probe(staged);
     if (!probe) throw IOError(path + ": folder " + dir.string() + " is not writable");
@@ -76,8 +75,10 @@ void OutputSet::commit() {
       const std::string why = ec.message();
       if (!backup.empty()) fs::remove(backup, ec);
       for (auto it = done.rbegin(); it != done.rend(); ++it) {
-        if (it->second.empty()) fs::remove(it->first, ec);
-        else fs::rename(it->second, it->first, ec);
+        if (it->second.empty())
+          fs::remove(it->first, ec);
+        else
+          fs::rename(it->second, it->first, ec);
       }
       throw IOError(e.path + ": cannot be written: " + why);
     }

@@ -37,7 +37,8 @@ bool encode_rgba_png(const unsigned char* rgba, int width, int height, const std
   return stbi_write_png_to_func(append_bytes, &out.data, width, height, 4, rgba, width * 4) != 0 && !out.data.empty();
 }
 
-bool encode_for_gltf(const std::vector<unsigned char>& bytes, const std::string& name, Image& out, std::string& problem) {
+bool encode_for_gltf(const std::vector<unsigned char>& bytes, const std::string& name, Image& out,
+                     std::string& problem) {
   if (starts_with(bytes, {0x89, 'P', 'N', 'G'})) {
     out = {name, "image/png", bytes};
     return true;

@@ -14,7 +14,8 @@ namespace OpenMeshSkinned {
 
 /** Makes a glTF-ready image from an encoded file's bytes: PNG and JPEG are kept as they are, any other
  *  format stb_image reads is re-encoded as PNG. Returns false and says why in \p problem otherwise. */
-bool encode_for_gltf(const std::vector<unsigned char>& bytes, const std::string& name, Image& out, std::string& problem);
+bool encode_for_gltf(const std::vector<unsigned char>& bytes, const std::string& name, Image& out,
+                     std::string& problem);
 
 /** Makes a PNG from raw 8-bit RGBA texels (row-major, \p width x \p height). */
 bool encode_rgba_png(const unsigned char* rgba, int width, int height, const std::string& name, Image& out);

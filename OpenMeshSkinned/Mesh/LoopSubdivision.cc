@@ -37,7 +37,9 @@ SkinnedMesh loop_subdivide(const SkinnedMesh& in) {
   clips(out) = clips(in);
   materials(out) = materials(in);
 
-  auto pos = [&](SkinnedMesh::VertexHandle v) { return Eigen::Vector3d(in.point(v)[0], in.point(v)[1], in.point(v)[2]); };
+  auto pos = [&](SkinnedMesh::VertexHandle v) {
+    return Eigen::Vector3d(in.point(v)[0], in.point(v)[1], in.point(v)[2]);
+  };
   std::vector<SkinnedMesh::VertexHandle> vmap(in.n_vertices());
   for (auto v : in.vertices()) {
     Blend b;
@@ -66,7 +68,8 @@ SkinnedMesh loop_subdivide(const SkinnedMesh& in) {
       b.add(0.5, pos(a), in.property(hi, a));
       b.add(0.5, pos(c), in.property(hi, c));
     } else {
-      const auto l = in.to_vertex_handle(in.next_halfedge_handle(h)), r = in.to_vertex_handle(in.next_halfedge_handle(o));
+      const auto l = in.to_vertex_handle(in.next_halfedge_handle(h)),
+                 r = in.to_vertex_handle(in.next_halfedge_handle(o));
       b.add(0.375, pos(a), in.property(hi, a));
       b.add(0.375, pos(c), in.property(hi, c));
       b.add(0.125, pos(l), in.property(hi, l));

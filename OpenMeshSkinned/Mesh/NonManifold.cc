@@ -52,35 +52,35 @@ size_t split_nonmanifold_vertices(SkinnedMesh& mesh, OpenMesh::FPropHandleT<int>
     }
     fans.erase(std::remove_if(fans.begin(), fans.end(), [](const auto& f) { return f.empty(); }), fans.end());
     for (size_t fi = 1; fi < fans.size(); ++fi) {
-    const std::vector<SkinnedMesh::FaceHandle>& others = fans[fi];
-    const auto copy = copy_vertex(mesh, vh);
-    ++copies;
-    for (auto fh : others) {
-      std::vector<Corner> corners;
-      for (auto heh : mesh.fh_range(fh)) {
-        const SkinnedMesh::VertexHandle to = mesh.to_vertex_handle(heh);
-        corners.push_back({to == vh ? SkinnedMesh::VertexHandle(copy) : to, mesh.normal(heh), mesh.texcoord2D(heh)});
-      }
-      const int mat = mesh.property(h_fmat, fh);
-      mesh.delete_face(fh, false);
-      auto nf = mesh.add_face(corners[0].v, corners[1].v, corners[2].v);
-      if (!nf.is_valid()) {
-        for (Corner& c : corners) {
-          c.v = copy_vertex(mesh, c.v);
-          ++copies;
+      const std::vector<SkinnedMesh::FaceHandle>& others = fans[fi];
+      const auto copy = copy_vertex(mesh, vh);
+      ++copies;
+      for (auto fh : others) {
+        std::vector<Corner> corners;
+        for (auto heh : mesh.fh_range(fh)) {
+          const SkinnedMesh::VertexHandle to = mesh.to_vertex_handle(heh);
+          corners.push_back({to == vh ? SkinnedMesh::VertexHandle(copy) : to, mesh.normal(heh), mesh.texcoord2D(heh)});
         }
-        nf = mesh.add_face(corners[0].v, corners[1].v, corners[2].v);
-      }
-      faces_of.resize(mesh.n_vertices());
-      mesh.property(h_fmat, nf) = mat;
-      for (auto heh : mesh.fh_range(nf))
-        for (const Corner& c : corners)
-          if (c.v == mesh.to_vertex_handle(heh)) {
-            mesh.set_normal(heh, c.n);
-            mesh.set_texcoord2D(heh, c.t);
+        const int mat = mesh.property(h_fmat, fh);
+        mesh.delete_face(fh, false);
+        auto nf = mesh.add_face(corners[0].v, corners[1].v, corners[2].v);
+        if (!nf.is_valid()) {
+          for (Corner& c : corners) {
+            c.v = copy_vertex(mesh, c.v);
+            ++copies;
           }
-      for (const Corner& c : corners) faces_of[c.v.idx()].push_back(nf);
-    }
+          nf = mesh.add_face(corners[0].v, corners[1].v, corners[2].v);
+        }
+        faces_of.resize(mesh.n_vertices());
+        mesh.property(h_fmat, nf) = mat;
+        for (auto heh : mesh.fh_range(nf))
+          for (const Corner& c : corners)
+            if (c.v == mesh.to_vertex_handle(heh)) {
+              mesh.set_normal(heh, c.n);
+              mesh.set_texcoord2D(heh, c.t);
+            }
+        for (const Corner& c : corners) faces_of[c.v.idx()].push_back(nf);
+      }
     }
   }
   return copies;

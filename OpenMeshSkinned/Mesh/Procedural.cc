@@ -27,10 +27,14 @@ Eigen::Vector2d square_outline(double u) {
   const int side = std::min(3, static_cast<int>(s));
   const double t = s - side;
   switch (side) {
-    case 0: return {1.0, -1.0 + 2.0 * t};
-    case 1: return {1.0 - 2.0 * t, 1.0};
-    case 2: return {-1.0, 1.0 - 2.0 * t};
-    default: return {-1.0 + 2.0 * t, -1.0};
+    case 0:
+      return {1.0, -1.0 + 2.0 * t};
+    case 1:
+      return {1.0 - 2.0 * t, 1.0};
+    case 2:
+      return {-1.0, 1.0 - 2.0 * t};
+    default:
+      return {-1.0 + 2.0 * t, -1.0};
   }
 }
 
@@ -74,7 +78,8 @@ SkinnedMesh make_skinned_tube(const TubeOptions& opt, double bend_degrees) {
     inf.sort();
     for (int k = 0; k < opt.around; ++k) {
       const double u = static_cast<double>(k) / opt.around;
-      Eigen::Vector2d xz = opt.square ? square_outline(u) : Eigen::Vector2d(std::cos(2 * M_PI * u), std::sin(2 * M_PI * u));
+      Eigen::Vector2d xz =
+          opt.square ? square_outline(u) : Eigen::Vector2d(std::cos(2 * M_PI * u), std::sin(2 * M_PI * u));
       const auto v = mesh.add_vertex(SkinnedMesh::Point(r * xz.x(), y, r * xz.y()));
       mesh.property(h_inf, v) = inf;
       vh.push_back(v);

@@ -9,14 +9,14 @@
 namespace OpenMeshSkinned {
 
 struct TubeOptions {
-  int around = 32;          ///< segments around the tube
-  int along = 64;           ///< segments along the tube
+  int around = 32;  ///< segments around the tube
+  int along = 64;   ///< segments along the tube
   double length = 2.0;
   double radius_base = 0.25;
-  double radius_tip = 0.15; ///< < radius_base tapers
-  bool square = false;      ///< square cross-section instead of a circle
-  int bones = 2;            ///< a chain of equal bones along +y
-  double blend = 0.1;       ///< half-width (fraction of length) of the weight blend at each joint
+  double radius_tip = 0.15;  ///< < radius_base tapers
+  bool square = false;       ///< square cross-section instead of a circle
+  int bones = 2;             ///< a chain of equal bones along +y
+  double blend = 0.1;        ///< half-width (fraction of length) of the weight blend at each joint
 };
 
 /** A tube along +y, skinned to a chain of bones, with one clip "bend" in which every joint but the root

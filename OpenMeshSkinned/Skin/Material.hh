@@ -10,8 +10,8 @@ namespace OpenMeshSkinned {
 
 /// An image a material uses, carried as encoded bytes so that every output can embed it.
 struct Image {
-  std::string name;                ///< where it came from (a file name, or the embedded texture's name)
-  std::string mime_type;           ///< "image/png" or "image/jpeg" (the two glTF 2.0 allows)
+  std::string name;                 ///< where it came from (a file name, or the embedded texture's name)
+  std::string mime_type;            ///< "image/png" or "image/jpeg" (the two glTF 2.0 allows)
   std::vector<unsigned char> data;  ///< the encoded file
 };
 

@@ -59,7 +59,8 @@ std::vector<MorphTarget>& morph_targets(Mesh& mesh) {
 }
 
 /// \p rest moved by the morph offsets \p deltas at \p weights.
-inline Eigen::Vector3d apply_morph(Eigen::Vector3d rest, const MorphDeltas& deltas, const std::vector<double>& weights) {
+inline Eigen::Vector3d apply_morph(Eigen::Vector3d rest, const MorphDeltas& deltas,
+                                   const std::vector<double>& weights) {
   const size_t n = std::min(deltas.size(), weights.size());
   for (size_t i = 0; i < n; ++i)
     if (weights[i] != 0.0) rest += weights[i] * deltas[i].cast<double>();

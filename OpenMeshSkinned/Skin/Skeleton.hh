@@ -21,7 +21,7 @@ using Affine3 = Eigen::Matrix<double, 3, 4>;  ///< affine map [R | t], rows x, y
 /// A joint (a node of the scene hierarchy that deforms or carries joints).
 struct Joint {
   std::string name;
-  int parent = -1;                                        ///< index into Skeleton::joints, -1 for a root
+  int parent = -1;                                           ///< index into Skeleton::joints, -1 for a root
   Eigen::Matrix4d rest_local = Eigen::Matrix4d::Identity();  ///< transform relative to the parent when not animated
   Eigen::Matrix4d inverse_bind = Eigen::Matrix4d::Identity();
 };

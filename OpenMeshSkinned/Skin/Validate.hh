@@ -38,9 +38,7 @@ ValidationReport validate_skin(Mesh& mesh, const ValidationOptions& opt = {}) {
   const auto h = influences_handle(mesh);
   const int n_joints = skeleton(mesh).size();
   ValidationReport rep;
-  auto fail = [](size_t v, const std::string& what) {
-    throw SkinError("vertex " + std::to_string(v) + ": " + what);
-  };
+  auto fail = [](size_t v, const std::string& what) { throw SkinError("vertex " + std::to_string(v) + ": " + what); };
   for (auto vh : mesh.vertices()) {
     Influences& inf = mesh.property(h, vh);
     const size_t v = vh.idx();
@@ -50,7 +48,8 @@ ValidationReport validate_skin(Mesh& mesh, const ValidationOptions& opt = {}) {
       fail(v, std::to_string(inf.size()) + " influences, more than the allowed " + std::to_string(opt.max_influences));
     for (const JointWeight& jw : inf) {
       if (!std::isfinite(jw.weight)) fail(v, "non-finite weight for joint " + std::to_string(jw.joint));
-      if (jw.weight < 0.0) fail(v, "negative weight " + std::to_string(jw.weight) + " for joint " + std::to_string(jw.joint));
+      if (jw.weight < 0.0)
+        fail(v, "negative weight " + std::to_string(jw.weight) + " for joint " + std::to_string(jw.joint));
       if (jw.joint < 0 || jw.joint >= n_joints)
         fail(v, "joint index " + std::to_string(jw.joint) + " out of range (skeleton has " + std::to_string(n_joints) +
                     " joints)");

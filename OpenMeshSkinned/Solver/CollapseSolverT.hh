@@ -30,9 +30,9 @@
 namespace OpenMeshSkinned {
 
 struct CollapseSolverStats {
-  size_t requests = 0;             ///< times a module asked for an edge
-  size_t solves = 0;               ///< edges actually solved
-  size_t cache_hits = 0;           ///< answered from the cache
+  size_t requests = 0;    ///< times a module asked for an edge
+  size_t solves = 0;      ///< edges actually solved
+  size_t cache_hits = 0;  ///< answered from the cache
   size_t collapses = 0;
   size_t placement_fallbacks = 0;  ///< collapses whose solved position was stale and was replaced
   size_t forced_flips = 0;         ///< collapses DecimaterT made although every placement flips a face

@@ -49,9 +49,7 @@ struct PoseQuadric {
   }
 
   /// x^T Q x for the point x (homogeneous coordinate 1).
-  double operator()(const Eigen::Vector3d& x) const {
-    return x.dot(A() * x) + 2.0 * b().dot(x) + c();
-  }
+  double operator()(const Eigen::Vector3d& x) const { return x.dot(A() * x) + 2.0 * b().dot(x) + c(); }
 };
 
 }  // namespace OpenMeshSkinned

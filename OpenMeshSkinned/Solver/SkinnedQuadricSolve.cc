@@ -88,7 +88,8 @@ void EdgeProblem::set_skins(const Influences& wa, const Influences& wb) {
   support = 0;
   for (const JointWeight& jw : wa) joint[support++] = jw.joint;
   for (const JointWeight& jw : wb)
-    if (std::find(joint.begin(), joint.begin() + support, jw.joint) == joint.begin() + support) joint[support++] = jw.joint;
+    if (std::find(joint.begin(), joint.begin() + support, jw.joint) == joint.begin() + support)
+      joint[support++] = jw.joint;
   start.resize(support);
   for (int k = 0; k < support; ++k) start[k] = 0.5 * (wa.weight_of(joint[k]) + wb.weight_of(joint[k]));
 }

@@ -27,9 +27,9 @@ namespace OpenMeshSkinned {
 /// The solver's answer for one edge.
 struct CollapseResult {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< rest-pose position of the merged vertex
-  Influences weights;                                 ///< its skin, within the cap
-  double error = 0.0;                                 ///< quartic error E(position, weights), >= 0
-  bool valid = false;                                 ///< false when the solve produced nothing finite
+  Influences weights;                                  ///< its skin, within the cap
+  double error = 0.0;                                  ///< quartic error E(position, weights), >= 0
+  bool valid = false;                                  ///< false when the solve produced nothing finite
 };
 
 /// The settings the kernel reads (the rest of SolverSettings is the mesh-facing solver's).
@@ -46,13 +46,13 @@ struct EdgeProblem {
   static constexpr int kMaxSupport = 2 * Influences::kCapacity;
   static_assert(kMaxSupport <= WeightSolver::kMaxJoints, "the weight solve must hold both endpoints' joints");
 
-  int poses = 0;                          ///< P
-  int support = 0;                        ///< m, the joints the merged vertex may use
-  std::array<int, kMaxSupport> joint{};   ///< their skeleton indices
-  std::vector<PoseQuadric> quadric;       ///< per pose: the endpoints' quadrics, summed
-  std::vector<Affine3> transform;         ///< pose j, support joint k at [j * kMaxSupport + k]
+  int poses = 0;                         ///< P
+  int support = 0;                       ///< m, the joints the merged vertex may use
+  std::array<int, kMaxSupport> joint{};  ///< their skeleton indices
+  std::vector<PoseQuadric> quadric;      ///< per pose: the endpoints' quadrics, summed
+  std::vector<Affine3> transform;        ///< pose j, support joint k at [j * kMaxSupport + k]
   Eigen::Vector3d pa = Eigen::Vector3d::Zero(), pb = Eigen::Vector3d::Zero();  ///< endpoints' rest positions
-  WeightSolver::Vector start;             ///< start weights on the support (the endpoints' average)
+  WeightSolver::Vector start;  ///< start weights on the support (the endpoints' average)
 
   /// Sets the support to the union of \p wa's and \p wb's joints, and the start to their average weights.
   void set_skins(const Influences& wa, const Influences& wb);

@@ -227,7 +227,7 @@ double WeightSolver::solve(const Mat& H, const Vec& start, Vec& alpha, const Mas
     while (!active[j]) ++j;
     // f(t) = [t, 1-t] (H + mu I) [t, 1-t]^T - 2 mu (a0_i t + a0_j (1-t)) + const
     const double hii = H(i, i) + mu, hjj = H(j, j) + mu, hij = H(i, j);
-    const double curv = hii + hjj - 2.0 * hij;  // f'' / 2
+    const double curv = hii + hjj - 2.0 * hij;                    // f'' / 2
     const double slope = hij - hjj - mu * (start[i] - start[j]);  // f'(0) / 2
     double t = curv > 0.0 ? -slope / curv : (slope < 0.0 ? 1.0 : 0.0);
     t = std::clamp(t, 0.0, 1.0);

@@ -49,7 +49,8 @@ public:
 
   /** Minimises over the joints marked in \p active (all when empty) with a >= 0 and sum(a) = 1.
    *  Returns the objective a^T H a (without the pull term). Inactive joints get weight 0. */
-  double solve(const Matrix& H, const Vector& start, Vector& alpha, const Eigen::Matrix<bool, Eigen::Dynamic, 1, 0, kMaxJoints, 1>* active = nullptr);
+  double solve(const Matrix& H, const Vector& start, Vector& alpha,
+               const Eigen::Matrix<bool, Eigen::Dynamic, 1, 0, kMaxJoints, 1>* active = nullptr);
 
   /** As solve(), with at most \p cap non-zero weights, enforced by \p strategy. */
   double solve_capped(const Matrix& H, const Vector& start, int cap, CapStrategy strategy, Vector& alpha);
@@ -70,7 +71,8 @@ private:
   bool solve_kkt(const Matrix& H, const Vector& start, double mu, const Mask& active, Vector& alpha,
                  bool allow_negative) const;
   int violated(const Matrix& H, const Vector& start, double mu, const Mask& active, const Vector& alpha) const;
-  bool active_set(const Matrix& H, const Vector& start, double mu, const Mask& active, Mask support, Vector& alpha) const;
+  bool active_set(const Matrix& H, const Vector& start, double mu, const Mask& active, Mask support,
+                  Vector& alpha) const;
   void solve_ceres(const Matrix& H, const Vector& start, double mu, const Mask& active, Vector& alpha);
 
   struct CeresCache;

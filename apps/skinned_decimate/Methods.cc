@@ -63,7 +63,10 @@ const std::vector<MethodModules>& table() {
 class Progress : public OpenMesh::Decimater::Observer {
 public:
   Progress(bool on, size_t total, std::string label)
-      : Observer(std::max<size_t>(1, total / 200)), on_(on), total_(std::max<size_t>(1, total)), label_(std::move(label)) {}
+      : Observer(std::max<size_t>(1, total / 200)),
+        on_(on),
+        total_(std::max<size_t>(1, total)),
+        label_(std::move(label)) {}
   void set_done_before(size_t n) { before_ = n; }
   void notify(size_t step) override {
     if (!on_ || Clock::now() - start_ < std::chrono::seconds(1)) return;
@@ -114,7 +117,8 @@ bool is_method(const std::string& name) {
 std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vector<size_t>& targets,
                                               const std::vector<double>& ratios, const Options& opt,
                                               const std::string& method, const std::string& label) {
-  const auto it = std::find_if(table().begin(), table().end(), [&](const MethodModules& t) { return method == t.method.name; });
+  const auto it =
+      std::find_if(table().begin(), table().end(), [&](const MethodModules& t) { return method == t.method.name; });
   if (it == table().end()) throw std::logic_error("unknown method " + method);
   Mesh mesh = input;
   Decimater dec(mesh);

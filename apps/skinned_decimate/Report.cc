@@ -25,8 +25,8 @@ std::string fmt(double v, int prec) {
 void print_table(const std::string& title, const std::vector<std::pair<Lod, Mesh>>& chain, bool have_heldout) {
   std::cout << title << "\n"
             << "  " << std::left << std::setw(8) << "ratio" << std::right << std::setw(10) << "triangles"
-            << std::setw(10) << "vertices" << std::setw(10) << "seconds" << std::setw(10) << "max infl"
-            << std::setw(14) << (have_heldout ? "heldout RMS%" : "rest RMS%") << std::setw(15)
+            << std::setw(10) << "vertices" << std::setw(10) << "seconds" << std::setw(10) << "max infl" << std::setw(14)
+            << (have_heldout ? "heldout RMS%" : "rest RMS%") << std::setw(15)
             << (have_heldout ? "heldout Haus%" : "rest Haus%") << "\n";
   for (const auto& [lod, mesh] : chain)
     std::cout << "  " << std::left << std::setw(8) << fmt(lod.ratio, 4) << std::right << std::setw(10) << lod.faces
@@ -35,25 +35,27 @@ void print_table(const std::string& title, const std::vector<std::pair<Lod, Mesh
               << "\n";
   for (const auto& [lod, mesh] : chain)
     if (lod.faces > lod.target)
-      std::cout << "  ratio " << fmt(lod.ratio, 4) << ": target of " << lod.target << " triangles not reached; stopped at "
-                << lod.faces << " (no collapse left that keeps the mesh valid)\n";
+      std::cout << "  ratio " << fmt(lod.ratio, 4) << ": target of " << lod.target
+                << " triangles not reached; stopped at " << lod.faces
+                << " (no collapse left that keeps the mesh valid)\n";
 }
 
 void print_comparison(const json& runs) {
   std::cout << "comparison (held-out error, % of the rest-pose bounding-box diagonal)\n  " << std::left << std::setw(9)
             << "method" << std::setw(8) << "ratio" << std::right << std::setw(10) << "triangles" << std::setw(10)
-            << "seconds" << std::setw(14) << "mean RMS%" << std::setw(15) << "max Haus%" << "\n";
+            << "seconds" << std::setw(14) << "mean RMS%" << std::setw(15) << "max Haus%"
+            << "\n";
   for (const auto& r : runs)
     for (const auto& l : r["lods"])
       std::cout << "  " << std::left << std::setw(9) << r["method"].get<std::string>() << std::setw(8)
                 << fmt(l["ratio"].get<double>(), 4) << std::right << std::setw(10) << l["faces"].get<size_t>()
                 << std::setw(10) << fmt(l["seconds"].get<double>(), 2) << std::setw(14)
-                << fmt(l["heldout_rms"].get<double>(), 4) << std::setw(15) << fmt(l["heldout_hausdorff"].get<double>(), 4)
-                << "\n";
+                << fmt(l["heldout_rms"].get<double>(), 4) << std::setw(15)
+                << fmt(l["heldout_hausdorff"].get<double>(), 4) << "\n";
 }
 
-json lod_json(const Lod& lod, const std::vector<OpenMeshSkinned::Clip>& clips, const OpenMeshSkinned::PoseSchedule& sched,
-              bool bind_pose_in_examples) {
+json lod_json(const Lod& lod, const std::vector<OpenMeshSkinned::Clip>& clips,
+              const OpenMeshSkinned::PoseSchedule& sched, bool bind_pose_in_examples) {
   json l = {{"ratio", lod.ratio},
             {"target_faces", lod.target},
             {"target_reached", lod.faces <= lod.target},

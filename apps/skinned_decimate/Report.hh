@@ -24,7 +24,7 @@ void print_table(const std::string& title, const std::vector<std::pair<Lod, Mesh
 void print_comparison(const json& runs);
 
 /// The report entry of one level: what was asked, what came out, and in which poses it was judged.
-json lod_json(const Lod& lod, const std::vector<OpenMeshSkinned::Clip>& clips, const OpenMeshSkinned::PoseSchedule& sched,
-              bool bind_pose_in_examples);
+json lod_json(const Lod& lod, const std::vector<OpenMeshSkinned::Clip>& clips,
+              const OpenMeshSkinned::PoseSchedule& sched, bool bind_pose_in_examples);
 
 }  // namespace skinned_decimate

@@ -36,7 +36,8 @@ int resolve_clip(const std::vector<Clip>& clips, const std::string& which, const
     if (clips[c].name == which) return int(c);
   if (std::all_of(which.begin(), which.end(), ::isdigit) && which.size() < 9 && std::stoi(which) < int(clips.size()))
     return std::stoi(which);
-  throw UsageError("--pose-clip " + which + ": no such clip in " + name + " (" + std::to_string(clips.size()) + " clips)");
+  throw UsageError("--pose-clip " + which + ": no such clip in " + name + " (" + std::to_string(clips.size()) +
+                   " clips)");
 }
 
 Poses choose_poses(const Mesh& mesh, const std::string& name, const Options& opt) {

@@ -22,23 +22,27 @@ std::string method_help() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"skinned-decimate: LODs of a skinned character that stay right in poses never seen.\n"
-               "With no INPUT, runs the papers' test characters (DeCoro's leg, Landreneau-Schaefer's column)."};
+  CLI::App app{
+      "skinned-decimate: LODs of a skinned character that stay right in poses never seen.\n"
+      "With no INPUT, runs the papers' test characters (DeCoro's leg, Landreneau-Schaefer's column)."};
   Options opt;
   app.add_option("input", opt.input, "Skinned asset (glTF/GLB, FBX, Collada, X, MD5, ...)")->check(CLI::ExistingFile);
-  app.add_option("-o,--output", opt.output,
-                 "Output .glb/.gltf; with --lods, NAME_lod1.glb, NAME_lod2.glb ... in the order of decreasing ratio "
-                 "(with no INPUT: the output folder). Never the input: all files of a run appear together at the end, or none");
+  app.add_option(
+      "-o,--output", opt.output,
+      "Output .glb/.gltf; with --lods, NAME_lod1.glb, NAME_lod2.glb ... in the order of decreasing ratio "
+      "(with no INPUT: the output folder). Never the input: all files of a run appear together at the end, or none");
   auto* r = app.add_option("--ratio", opt.ratio, "Keep this fraction of the triangles, in (0,1] (default 0.5)");
   auto* f = app.add_option("--faces", opt.faces, "Keep this many triangles");
-  auto* l = app.add_option("--lods", opt.lods, "A chain of ratios, built in one pass, e.g. 0.5,0.25,0.1")->delimiter(',');
+  auto* l =
+      app.add_option("--lods", opt.lods, "A chain of ratios, built in one pass, e.g. 0.5,0.25,0.1")->delimiter(',');
   r->excludes(f)->excludes(l);
   f->excludes(l);
   app.add_option("--max-influences", opt.max_influences, "Bone influences per vertex at most (1-8, default 4)");
   app.add_option("--poses", opt.poses,
                  "Example poses: K evenly spaced times over the clip, both ends included, plus the bind pose (1-" +
                      std::to_string(kMaxPoses) + ", default 8)");
-  app.add_option("--pose-clip", opt.pose_clip, "Clip (name or index) for the example poses; default: all clips end to end");
+  app.add_option("--pose-clip", opt.pose_clip,
+                 "Clip (name or index) for the example poses; default: all clips end to end");
   app.add_option("--method", opt.method, method_help());
   app.add_flag("--compare", opt.compare, "Run every method on the same input and print one table");
   app.add_option("--report", opt.report, "Write the summary as JSON");

@@ -169,7 +169,8 @@ namespace {
 // A copy of \p prim restricted to the triangles \p tris (indices into its vertex arrays), with only the
 // vertices they use: exporters write compact primitives, and assimp 5.2 misreads skins of primitives
 // that leave vertices unused. \p edit may change the copied POSITION/NORMAL values and JOINTS indices.
-tinygltf::Primitive compact_primitive(tinygltf::Model& m, const tinygltf::Primitive& prim, const std::vector<uint32_t>& tris,
+tinygltf::Primitive compact_primitive(tinygltf::Model& m, const tinygltf::Primitive& prim,
+                                      const std::vector<uint32_t>& tris,
                                       const std::function<void(const std::string&, std::vector<double>&)>& edit) {
   std::vector<int> new_index(m.accessors.at(prim.attributes.at("POSITION")).count, -1);
   std::vector<uint32_t> used, idx;
@@ -220,17 +221,19 @@ void split_into_second_skin(tinygltf::Model& m) {
   const tinygltf::Skin& skin_a = m.skins.at(m.nodes[node_a].skin);
   const size_t nj = skin_a.joints.size();
 
-  tinygltf::Primitive prim_b = compact_primitive(m, prim_a, second, [&](const std::string& name, std::vector<double>& v) {
-    const bool pos = name == "POSITION", nrm = name == "NORMAL";
-    if (pos || nrm)
-      for (size_t i = 0; i + 2 < v.size(); i += 3) {
-        const Eigen::Vector3d x(v[i], v[i + 1], v[i + 2]);
-        const Eigen::Vector3d y = pos ? Eigen::Vector3d((T * x.homogeneous()).head<3>()) : Eigen::Vector3d(T.topLeftCorner<3, 3>() * x);
-        v[i] = y.x(), v[i + 1] = y.y(), v[i + 2] = y.z();
-      }
-    if (name.rfind("JOINTS_", 0) == 0)  // indices into the reversed joint list
-      for (double& j : v) j = static_cast<double>(nj - 1 - static_cast<size_t>(j));
-  });
+  tinygltf::Primitive prim_b =
+      compact_primitive(m, prim_a, second, [&](const std::string& name, std::vector<double>& v) {
+        const bool pos = name == "POSITION", nrm = name == "NORMAL";
+        if (pos || nrm)
+          for (size_t i = 0; i + 2 < v.size(); i += 3) {
+            const Eigen::Vector3d x(v[i], v[i + 1], v[i + 2]);
+            const Eigen::Vector3d y =
+                pos ? Eigen::Vector3d((T * x.homogeneous()).head<3>()) : Eigen::Vector3d(T.topLeftCorner<3, 3>() * x);
+            v[i] = y.x(), v[i + 1] = y.y(), v[i + 2] = y.z();
+          }
+        if (name.rfind("JOINTS_", 0) == 0)  // indices into the reversed joint list
+          for (double& j : v) j = static_cast<double>(nj - 1 - static_cast<size_t>(j));
+      });
   prim_a = compact_primitive(m, prim_a, first, [](const std::string&, std::vector<double>&) {});
 
   tinygltf::Skin skin_b;

@@ -14,9 +14,10 @@ tinygltf::Model load(const std::string& path) {
   tinygltf::TinyGLTF loader;
   tinygltf::Model model;
   std::string err, warn;
-  const bool glb = path.size() > 4 && (path.substr(path.size() - 4) == ".glb" || path.substr(path.size() - 4) == ".GLB");
-  const bool ok = glb ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
-                      : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+  const bool glb =
+      path.size() > 4 && (path.substr(path.size() - 4) == ".glb" || path.substr(path.size() - 4) == ".GLB");
+  const bool ok =
+      glb ? loader.LoadBinaryFromFile(&model, &err, &warn, path) : loader.LoadASCIIFromFile(&model, &err, &warn, path);
   if (!ok) throw std::runtime_error(path + ": " + err);
   return model;
 }
@@ -29,11 +30,16 @@ void save_glb(tinygltf::Model& model, const std::string& path) {
 
 int components(const tinygltf::Accessor& acc) {
   switch (acc.type) {
-    case TINYGLTF_TYPE_SCALAR: return 1;
-    case TINYGLTF_TYPE_VEC2: return 2;
-    case TINYGLTF_TYPE_VEC3: return 3;
-    case TINYGLTF_TYPE_VEC4: return 4;
-    case TINYGLTF_TYPE_MAT4: return 16;
+    case TINYGLTF_TYPE_SCALAR:
+      return 1;
+    case TINYGLTF_TYPE_VEC2:
+      return 2;
+    case TINYGLTF_TYPE_VEC3:
+      return 3;
+    case TINYGLTF_TYPE_VEC4:
+      return 4;
+    case TINYGLTF_TYPE_MAT4:
+      return 16;
   }
   throw std::runtime_error("unsupported accessor type");
 }
@@ -52,11 +58,31 @@ std::vector<double> read(const tinygltf::Model& model, int index) {
       const unsigned char* p = base + i * stride + c * csize;
       double v = 0.0;
       switch (acc.componentType) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: { float f; std::memcpy(&f, p, 4); v = f; break; }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: v = *p; if (acc.normalized) v /= 255.0; break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t s; std::memcpy(&s, p, 2); v = s; if (acc.normalized) v /= 65535.0; break; }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { uint32_t u; std::memcpy(&u, p, 4); v = u; break; }
-        default: throw std::runtime_error("unsupported component type");
+        case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+          float f;
+          std::memcpy(&f, p, 4);
+          v = f;
+          break;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+          v = *p;
+          if (acc.normalized) v /= 255.0;
+          break;
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+          uint16_t s;
+          std::memcpy(&s, p, 2);
+          v = s;
+          if (acc.normalized) v /= 65535.0;
+          break;
+        }
+        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+          uint32_t u;
+          std::memcpy(&u, p, 4);
+          v = u;
+          break;
+        }
+        default:
+          throw std::runtime_error("unsupported component type");
       }
       out[i * nc + c] = v;
     }
@@ -91,7 +117,8 @@ struct Trs {
 
 // The sampler's output at time t, n values per key (the spec's LINEAR, STEP and CUBICSPLINE rules;
 // rotations (n == 4 with quat) are slerped under LINEAR).
-std::vector<double> sample(const tinygltf::Model& model, const tinygltf::AnimationSampler& s, double t, int n, bool quat) {
+std::vector<double> sample(const tinygltf::Model& model, const tinygltf::AnimationSampler& s, double t, int n,
+                           bool quat) {
   const auto in = read(model, s.input);
   const auto out = read(model, s.output);
   const bool cubic = s.interpolation == "CUBICSPLINE";

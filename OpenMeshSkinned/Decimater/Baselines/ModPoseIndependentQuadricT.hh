@@ -17,9 +17,9 @@ namespace OpenMeshSkinned {
 struct JointDistribution {
   enum Kind { Box, Gaussian } kind = Box;
   Eigen::Vector3d axis = Eigen::Vector3d::UnitX();
-  double lo = 0.0, hi = 0.0;         ///< Box
-  double preferred = 0.0;            ///< Gaussian mean
-  double stiffness = 1.0;            ///< Gaussian: density ~ exp(-stiffness (angle - preferred)^2 / 2), angle in radians
+  double lo = 0.0, hi = 0.0;  ///< Box
+  double preferred = 0.0;     ///< Gaussian mean
+  double stiffness = 1.0;     ///< Gaussian: density ~ exp(-stiffness (angle - preferred)^2 / 2), angle in radians
 };
 
 /** Priority module: DeCoro & Rusinkiewicz's pose-independent quadric (I3D 2005).
@@ -65,7 +65,8 @@ protected:
     std::vector<Eigen::Vector3d> posed(mesh.n_vertices());
     std::vector<PoseQuadric> q(mesh.n_vertices());
     for (const Pose& pose : poses) {
-      for (auto v : mesh.vertices()) posed[v.idx()] = skin_point(to_eigen(mesh.point(v)), mesh.property(h_inf, v), pose);
+      for (auto v : mesh.vertices())
+        posed[v.idx()] = skin_point(to_eigen(mesh.point(v)), mesh.property(h_inf, v), pose);
       std::fill(q.begin(), q.end(), PoseQuadric{});
       accumulate_quadrics(
           mesh, 1, [&](typename MeshT::VertexHandle v, int) { return posed[v.idx()]; },
@@ -75,14 +76,14 @@ protected:
         Eigen::Matrix4d M = Eigen::Matrix4d::Identity();
         M.topRows<3>() = blend(mesh.property(h_inf, v), pose);
         const Eigen::Matrix4d R = M.transpose() * q[v.idx()].matrix() * M / double(poses.size());
-        const double add[10] = {R(0, 0), R(0, 1), R(0, 2), R(0, 3), R(1, 1), R(1, 2), R(1, 3), R(2, 2), R(2, 3), R(3, 3)};
+        const double add[10] = {R(0, 0), R(0, 1), R(0, 2), R(0, 3), R(1, 1),
+                                R(1, 2), R(1, 3), R(2, 2), R(2, 3), R(3, 3)};
         for (int i = 0; i < 10; ++i) quadrics[v.idx()].q[i] += add[i];
       }
     }
   }
 
 private:
-
   std::vector<Pose> sample_poses() {
     const MeshT& mesh = Base::mesh();
     const Skeleton& skel = skeleton(mesh);
@@ -103,7 +104,8 @@ private:
             a[i] = d.lo + qnt * (d.hi - d.lo);
           } else {
             const double sigma = 1.0 / std::sqrt(std::max(d.stiffness, 1e-12)) * 180.0 / M_PI;
-            a[i] = d.preferred + sigma * std::sqrt(2.0) * boost::math::erf_inv(std::clamp(2.0 * qnt - 1.0, -1.0 + 1e-12, 1.0 - 1e-12));
+            a[i] = d.preferred + sigma * std::sqrt(2.0) *
+                                     boost::math::erf_inv(std::clamp(2.0 * qnt - 1.0, -1.0 + 1e-12, 1.0 - 1e-12));
           }
         }
         std::shuffle(a.begin(), a.end(), rng);
@@ -115,7 +117,8 @@ private:
         for (const auto& [j, d] : joint_dist_) {
           if (j < 0 || j >= skel.size()) continue;
           Eigen::Matrix4d r = Eigen::Matrix4d::Identity();
-          r.topLeftCorner<3, 3>() = Eigen::AngleAxisd(angle[j][i] * M_PI / 180.0, d.axis.normalized()).toRotationMatrix();
+          r.topLeftCorner<3, 3>() =
+              Eigen::AngleAxisd(angle[j][i] * M_PI / 180.0, d.axis.normalized()).toRotationMatrix();
           locals[j] = skel.joints[j].rest_local * r;
         }
         Pose p;
