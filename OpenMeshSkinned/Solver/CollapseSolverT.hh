@@ -16,6 +16,7 @@
 #include "OpenMeshSkinned/Decimater/FoldOver.hh"
 #include "OpenMeshSkinned/Decimater/MorphTransferT.hh"
 #include "OpenMeshSkinned/Decimater/UvTransferT.hh"
+#include "OpenMeshSkinned/Solver/EdgeCache.hh"
 #include "OpenMeshSkinned/Solver/PoseCacheT.hh"
 #include "OpenMeshSkinned/Solver/SolverSettings.hh"
 #include "OpenMeshSkinned/Solver/StaleVerdictsT.hh"
@@ -81,9 +82,7 @@ public:
     model_ = model;
   }
   /// Forgets every cached edge answer (a setting or a module's cost model changed).
-  void invalidate_cache() {
-    for (auto& c : cache_) c.filled = false;
-  }
+  void invalidate_cache() { cache_.invalidate(); }
 
   void attach(const SolverClientT<Mesh>* m) {
     clients_.push_back(m);
@@ -112,8 +111,7 @@ public:
     if (prepared_) return;
     poses_.build();
     h_inf_ = poses_.influences();
-    stamp_.assign(mesh_.n_vertices(), 0);
-    cache_.assign(mesh_.n_edges(), CacheEntry{});
+    cache_.reset(mesh_.n_edges(), mesh_.n_vertices());
     uv_.prepare();
     stale_.prepare();
     prepared_ = true;
@@ -131,21 +129,21 @@ public:
   /// The optimal merged vertex for the edge of \p ci, from the cache when its endpoints did not change.
   const CollapseResult& solve(const CollapseInfo& ci) {
     ++stats_.requests;
-    CacheEntry& ce = cache_[mesh_.edge_handle(ci.v0v1).idx()];
+    const int e = mesh_.edge_handle(ci.v0v1).idx();
     const int a = std::min(ci.v0.idx(), ci.v1.idx()), b = std::max(ci.v0.idx(), ci.v1.idx());
-    if (ce.filled && ce.va == a && ce.vb == b && ce.sa == stamp_[a] && ce.sb == stamp_[b]) {
+    if (const CollapseResult* hit = cache_.find(e, a, b)) {
       ++stats_.cache_hits;
-      return ce.result;
+      return *hit;
     }
     ++stats_.solves;
+    CollapseResult& out = cache_.store(e, a, b);
     if (model_) {
-      model_->solve_edge(VertexHandle(a), VertexHandle(b), ce.result);
+      model_->solve_edge(VertexHandle(a), VertexHandle(b), out);
     } else {
       load_problem(VertexHandle(a), VertexHandle(b));
-      solve_collapse(problem_, settings_, weights_, ce.result);
+      solve_collapse(problem_, settings_, weights_, out);
     }
-    ce = {ce.result, a, b, stamp_[a], stamp_[b], true};
-    return ce.result;
+    return out;
   }
 
   /** Whether collapsing \p ci, with the merged vertex at \p rest with skin \p w, turns any remaining face
@@ -217,8 +215,8 @@ public:
     // Moved or not, v1's corners that came from v0 carry v0's UVs: re-interpolate all of them.
     uv_.apply(v1);
     morph_.apply(v1);
-    ++stamp_[v1.idx()];
-    ++stamp_[v0.idx()];
+    cache_.touch(v1.idx());
+    cache_.touch(v0.idx());
     // Moved or not, v1 now holds v0's faces: verdicts around it may be stale. (After the stamps: the
     // re-checks must not reuse answers cached for v1 as it was.)
     if (settings_.placement && settings_.fold_check)
@@ -253,13 +251,6 @@ public:
   WeightSolver& weight_solver() { return weights_; }
 
 private:
-  struct CacheEntry {
-    CollapseResult result;
-    int va = -1, vb = -1;
-    uint32_t sa = 0, sb = 0;
-    bool filled = false;
-  };
-
   void load_problem(VertexHandle va, VertexHandle vb) {
     problem_.set_skins(mesh_.property(h_inf_, va), mesh_.property(h_inf_, vb));
     problem_.resize(poses_.n_poses());
@@ -300,7 +291,7 @@ private:
     load_problem(vh, vh);
     mesh_.property(h_inf_, vh) = reduce_influences(problem_, settings_, weights_);
     poses_.update(vh);
-    ++stamp_[vh.idx()];
+    cache_.touch(vh.idx());
   }
 
   Mesh& mesh_;
@@ -312,8 +303,7 @@ private:
   UvTransferT<Mesh> uv_;
   MorphTransferT<Mesh> morph_;
   StaleVerdictsT<Mesh> stale_;
-  std::vector<uint32_t> stamp_;
-  std::vector<CacheEntry> cache_;
+  EdgeCache cache_;
   bool prepared_ = false;
   bool pending_ = false;
   CollapseResult pending_result_;
