@@ -13,19 +13,20 @@ void write_clips(const SkinnedMesh& mesh, int mesh_node, BufferWriter& buf, tiny
   for (const Clip& clip : clips(mesh)) {
     tinygltf::Animation anim;
     anim.name = clip.name;
-    auto add_sampler = [&](const std::vector<double>& times, std::vector<float> values, int type, int joint,
-                           const char* path_name) {
+    // \p count output elements: one per key, except for morph weights (one per key and target).
+    auto add_sampler = [&](const std::vector<double>& times, const std::vector<float>& values, int type, size_t count,
+                           int node, const char* path_name) {
       if (times.empty()) return;
       std::vector<float> t(times.begin(), times.end());
       const auto [lo, hi] = std::minmax_element(t.begin(), t.end());
       tinygltf::AnimationSampler s;
       s.input = buf.add(t, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, t.size(), 0, {*lo}, {*hi});
-      s.output = buf.add(values, TINYGLTF_COMPONENT_TYPE_FLOAT, type, t.size(), 0);
+      s.output = buf.add(values, TINYGLTF_COMPONENT_TYPE_FLOAT, type, count, 0);
       s.interpolation = "LINEAR";
       anim.samplers.push_back(s);
       tinygltf::AnimationChannel ch;
       ch.sampler = static_cast<int>(anim.samplers.size()) - 1;
-      ch.target_node = joint;
+      ch.target_node = node;
       ch.target_path = path_name;
       anim.channels.push_back(ch);
     };
@@ -37,9 +38,9 @@ void write_clips(const SkinnedMesh& mesh, int mesh_node, BufferWriter& buf, tiny
         ro.insert(ro.end(), {float(u.x()), float(u.y()), float(u.z()), float(u.w())});
       }
       for (const auto& v : ch.scales) sc.insert(sc.end(), {float(v.x()), float(v.y()), float(v.z())});
-      add_sampler(ch.translation_times, tr, TINYGLTF_TYPE_VEC3, ch.joint, "translation");
-      add_sampler(ch.rotation_times, ro, TINYGLTF_TYPE_VEC4, ch.joint, "rotation");
-      add_sampler(ch.scale_times, sc, TINYGLTF_TYPE_VEC3, ch.joint, "scale");
+      add_sampler(ch.translation_times, tr, TINYGLTF_TYPE_VEC3, ch.translation_times.size(), ch.joint, "translation");
+      add_sampler(ch.rotation_times, ro, TINYGLTF_TYPE_VEC4, ch.rotation_times.size(), ch.joint, "rotation");
+      add_sampler(ch.scale_times, sc, TINYGLTF_TYPE_VEC3, ch.scale_times.size(), ch.joint, "scale");
     }
     if (n_targets > 0 && !clip.morph_channels.empty()) {
       // glTF animates all of a mesh's weights in one channel: sample every target at the union of the keys.
@@ -53,18 +54,7 @@ void write_clips(const SkinnedMesh& mesh, int mesh_node, BufferWriter& buf, tiny
         at.resize(n_targets, 0.0);
         w.insert(w.end(), at.begin(), at.end());
       }
-      std::vector<float> tf(times.begin(), times.end());
-      tinygltf::AnimationSampler s;
-      s.input =
-          buf.add(tf, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, tf.size(), 0, {tf.front()}, {tf.back()});
-      s.output = buf.add(w, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, w.size(), 0);
-      s.interpolation = "LINEAR";
-      anim.samplers.push_back(s);
-      tinygltf::AnimationChannel ch;
-      ch.sampler = static_cast<int>(anim.samplers.size()) - 1;
-      ch.target_node = mesh_node;
-      ch.target_path = "weights";
-      anim.channels.push_back(ch);
+      add_sampler(times, w, TINYGLTF_TYPE_SCALAR, w.size(), mesh_node, "weights");
     }
     if (!anim.channels.empty()) model.animations.push_back(anim);
   }
