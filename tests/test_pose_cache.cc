@@ -1,0 +1,53 @@
+// Posed positions and per-pose quadrics per vertex (Solver/PoseCacheT.hh).
+#include "helpers.hh"
+
+#include <OpenMeshSkinned/Mesh/Procedural.hh>
+#include <OpenMeshSkinned/Solver/PoseCacheT.hh>
+
+using namespace OpenMeshSkinned;
+using omsk_test::Mesh;
+
+TEST(PoseCache, PosedPositionsAreTheSkinnedOnesAndEachPoseHasItsQuadrics) {
+  Mesh mesh = make_bending_cylinder(8, 8);
+  ASSERT_GE(example_poses(mesh).size(), 2u);
+  PoseCacheT<Mesh> cache(mesh);
+  cache.build();
+  ASSERT_EQ(cache.n_poses(), int(example_poses(mesh).size()));
+  const auto h = influences_handle(mesh);
+  for (int j = 0; j < cache.n_poses(); ++j) {
+    const auto posed = skin_positions(mesh, example_poses(mesh)[j]);
+    for (auto vh : mesh.vertices()) {
+      EXPECT_LT((cache.posed(vh, j) - posed[vh.idx()]).norm(), 1e-12);
+      // A vertex lies on the planes of its own faces in every pose: its quadric is ~0 there.
+      EXPECT_NEAR(cache.quadric(vh, j)(cache.posed(vh, j)), 0.0, 1e-9);
+      EXPECT_EQ(cache.posed_point(to_eigen(mesh.point(vh)), mesh.property(h, vh), j), cache.posed(vh, j));
+    }
+  }
+}
+
+TEST(PoseCache, AMeshWithoutExamplePosesUsesTheBindPose) {
+  Mesh mesh = make_bending_cylinder(8, 8);
+  example_poses(mesh).clear();
+  PoseCacheT<Mesh> cache(mesh);
+  cache.build();
+  ASSERT_EQ(cache.n_poses(), 1);
+  for (auto vh : mesh.vertices()) EXPECT_LT((cache.posed(vh, 0) - to_eigen(mesh.point(vh))).norm(), 1e-12);
+}
+
+TEST(PoseCache, UpdateFollowsAMovedVertexAndMergeSumsQuadrics) {
+  Mesh mesh = make_bending_cylinder(8, 8);
+  PoseCacheT<Mesh> cache(mesh);
+  cache.build();
+  const auto a = Mesh::VertexHandle(3), b = Mesh::VertexHandle(4);
+  const Eigen::Vector3d x(0.3, -0.2, 0.5);
+  std::vector<double> before;
+  for (int j = 0; j < cache.n_poses(); ++j) before.push_back(cache.quadric(a, j)(x) + cache.quadric(b, j)(x));
+  cache.merge_quadrics(a, b);
+  for (int j = 0; j < cache.n_poses(); ++j) EXPECT_NEAR(cache.quadric(b, j)(x), before[j], 1e-12);
+  mesh.set_point(b, mesh.point(b) + Mesh::Point(0, 0, 1));
+  cache.update(b);
+  const auto h = influences_handle(mesh);
+  for (int j = 0; j < cache.n_poses(); ++j)
+    EXPECT_LT((cache.posed(b, j) - skin_point(to_eigen(mesh.point(b)), mesh.property(h, b), cache.pose(j))).norm(),
+              1e-12);
+}
