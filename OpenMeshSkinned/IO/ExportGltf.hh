@@ -6,7 +6,7 @@
  *  and every animation clip.
  */
 
-#include "OpenMeshSkinned/IO/Import.hh"
+#include "OpenMeshSkinned/IO/IOError.hh"
 #include "OpenMeshSkinned/Mesh/SkinnedMesh.hh"
 
 #include <string>
