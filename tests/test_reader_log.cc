@@ -4,6 +4,8 @@
 #include <OpenMeshSkinned/IO/Import.hh>
 #include <OpenMeshSkinned/IO/ReaderLog.hh>
 
+#include <assimp/DefaultLogger.hpp>
+
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -42,4 +44,15 @@ TEST(ReaderLog, FacesWithOutOfRangeIndicesAreNotDroppedSilently) {
   SkinnedMesh fbx;
   const ImportReport rf = import_skinned(std::string(OMSK_TEST_MODELS) + "/FBX/animation_with_skeleton.fbx", fbx);
   for (const auto& w : rf.warnings) EXPECT_EQ(w.find("the reader dropped data"), std::string::npos) << w;
+}
+
+TEST(ReaderLog, AFloodOfDistinctMessagesStaysBounded) {
+  // A corrupt file can make a reader log a distinct line per element, millions of them.
+  const ReaderLog log;
+  for (int i = 0; i < 100000; ++i)
+    Assimp::DefaultLogger::get()->warn(("Skipping element " + std::to_string(i)).c_str());
+  const auto lines = log.data_loss();
+  ASSERT_EQ(lines.size(), ReaderLog::kMaxDistinct + 1);
+  EXPECT_EQ(lines.front(), "Skipping element 0");
+  EXPECT_EQ(lines.back(), "and " + std::to_string(100000 - ReaderLog::kMaxDistinct) + " more such messages");
 }

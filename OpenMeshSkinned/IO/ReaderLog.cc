@@ -10,6 +10,7 @@ namespace OpenMeshSkinned {
 
 struct ReaderLog::Sink {
   std::vector<std::pair<std::string, size_t>> messages;
+  size_t more = 0;  // data-loss messages beyond kMaxDistinct distinct ones
 };
 
 namespace {
@@ -46,10 +47,12 @@ void Stream::write(const char* message) {
   if (!ReaderLog::reports_data_loss(m)) return;
   auto& list = sink_->messages;
   auto it = std::find_if(list.begin(), list.end(), [&](const auto& e) { return e.first == m; });
-  if (it == list.end())
+  if (it != list.end())
+    ++it->second;
+  else if (list.size() < ReaderLog::kMaxDistinct)
     list.emplace_back(m, 1);
   else
-    ++it->second;
+    ++sink_->more;  // a corrupt file can make a reader log millions of distinct lines: keep the cost flat
 }
 
 ReaderLog::ReaderLog() : sink_(std::make_shared<Sink>()) {
@@ -62,6 +65,7 @@ ReaderLog::~ReaderLog() { Assimp::DefaultLogger::kill(); }
 std::vector<std::string> ReaderLog::data_loss() const {
   std::vector<std::string> out;
   for (const auto& [m, n] : sink_->messages) out.push_back(n > 1 ? m + " (" + std::to_string(n) + " times)" : m);
+  if (sink_->more > 0) out.push_back("and " + std::to_string(sink_->more) + " more such messages");
   return out;
 }
 

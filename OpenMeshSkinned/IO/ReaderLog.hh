@@ -21,8 +21,10 @@ public:
   ReaderLog(const ReaderLog&) = delete;
   ReaderLog& operator=(const ReaderLog&) = delete;
 
-  /// Distinct messages that report dropped, skipped or ignored data, in order, with how often each came.
+  /// Distinct messages that report dropped, skipped or ignored data, in order, with how often each came;
+  /// past kMaxDistinct distinct ones, a last line counts the rest.
   std::vector<std::string> data_loss() const;
+  static constexpr size_t kMaxDistinct = 20;
 
   /// True when \p message says the reader dropped data (the filter data_loss() applies).
   static bool reports_data_loss(const std::string& message);
