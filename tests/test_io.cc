@@ -132,6 +132,27 @@ TEST(Import, RealCharactersCarrySkeletonSkinAndClips) {
   }
 }
 
+TEST(Import, AMeshUsedBeforeIsReplacedNotAppendedTo) {
+  // Into the same mesh, in and out of process: what comes back is the second file alone.
+  for (bool isolate : {false, true}) {
+    SCOPED_TRACE(isolate ? "isolated" : "in process");
+    ImportOptions opt;
+    opt.isolate = isolate;
+    Mesh fresh, reused;
+    import_skinned(model("glTF2/simple_skin/simple_skin.gltf"), fresh, opt);
+    import_skinned(model("X/Testwuson.X"), reused, opt);
+    OpenMesh::MPropHandleT<int> own;
+    reused.add_property(own, "m:users_own");
+    import_skinned(model("glTF2/simple_skin/simple_skin.gltf"), reused, opt);
+    EXPECT_EQ(reused.n_vertices(), fresh.n_vertices());
+    EXPECT_EQ(skeleton(reused).size(), skeleton(fresh).size());
+    EXPECT_EQ(clips(reused).size(), clips(fresh).size());
+    EXPECT_EQ(materials(reused).size(), materials(fresh).size());
+    OpenMesh::MPropHandleT<int> h;
+    EXPECT_FALSE(reused.get_property_handle(h, "m:users_own")) << "the mesh is cleared first, properties too";
+  }
+}
+
 TEST(Import, WeldsSeamsIntoConnectedTopologyAndKeepsWedgeAttributes) {
   Mesh mesh;
   const auto rep = import_skinned(model("X/Testwuson.X"), mesh);

@@ -148,7 +148,7 @@ ImportReport detail::import_scene(const std::string& path, const std::string& re
   if (instances.empty()) throw IOError(path + ": contains no triangle mesh");
 
   ImportReport rep;
-  mesh.clear();
+  mesh = SkinnedMesh();  // a fresh mesh: clear() would keep the properties (skeleton, clips) of an earlier use
   request_skinned_attributes(mesh);
   add_skin(mesh);
   face_material_handle(mesh);

@@ -158,7 +158,7 @@ void load_import(const std::string& bytes, SkinnedMesh& mesh, ImportReport& repo
       (!f.morph_deltas.empty() && f.morph_deltas.size() != nv))
     throw IOError("import archive: inconsistent array sizes");
 
-  mesh.clear();
+  mesh = SkinnedMesh();  // a fresh mesh: clear() would keep the properties (skeleton, clips) of an earlier use
   request_skinned_attributes(mesh);
   const auto h_inf = add_skin(mesh);
   const auto h_fmat = face_material_handle(mesh);

@@ -50,6 +50,10 @@ bool looks_like_oom(const std::string& message) {
 [[noreturn]] void run_child(int fd, const std::string& path, const std::string& read_path, const ImportOptions& opt) {
   rlimit core{0, 0};
   ::setrlimit(RLIMIT_CORE, &core);  // a crash of the reader is expected on bad files: no core dumps
+  // The reader's crash must end the child by its signal, which the parent reports in one line: a handler
+  // inherited from the host application (or a sanitizer's, which prints a report and exits) must not
+  // turn it into something else.
+  for (int sig : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) ::signal(sig, SIG_DFL);
 #if !defined(__SANITIZE_ADDRESS__)
   // AddressSanitizer reserves terabytes of shadow address space, so the limit only applies without it.
   if (opt.memory_limit_mb > 0) {
