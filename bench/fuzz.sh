@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# Fuzzes the import path with libFuzzer for N minutes (default 30), then runs every input that crashed
+# Fuzzes the import path with libFuzzer for N minutes (default 30), then (bench/fuzz-triage.sh) runs every input that crashed
 # or hung the in-process importer through skinned-decimate, which must refuse each with exit 1 and one
 # line (its isolated reader turns a reader crash into an error).
 #
-#   bench/fuzz.sh [MINUTES]        results in bench/results/fuzz/ (summary.txt, artifacts/)
+#   bench/fuzz.sh [MINUTES]        results in bench/results/fuzz/ (summary.txt, owners.txt, artifacts/)
 #
 # Builds with Clang into build-fuzz/ (ASan + UBSan + libFuzzer); needs the normal build for the CLI.
 set -euo pipefail
@@ -49,29 +49,5 @@ build-fuzz/fuzz_import "$corpus" -fork=1 -ignore_crashes=1 -ignore_ooms=1 -ignor
   -max_total_time=$((minutes * 60)) -timeout=30 -rss_limit_mb=4096 -max_len=1048576 -detect_leaks=0 \
   -artifact_prefix="$out/artifacts/" >"$log" 2>&1 || true
 
-# Every finding through the CLI.
-ext=(.x .md5mesh .fbx .gltf .glb .obj .dae .ply .smd .b3d)
-tmp=$(mktemp -d)
-clean=0 bad=0
-for a in "$out"/artifacts/*; do
-  [ -f "$a" ] || continue
-  b=$(od -An -tu1 -N1 "$a" | tr -d ' ')
-  f="$tmp/input${ext[$((b % 10))]}"
-  tail -c +2 "$a" >"$f"
-  set +e
-  timeout 120 build/apps/skinned-decimate "$f" -o "$tmp/out.glb" --quiet --time-limit 30 >/dev/null 2>"$tmp/err"
-  code=$?
-  set -e
-  msg=$(grep -v ': warning: ' "$tmp/err" || true)
-  lines=$(printf '%s\n' "$msg" | grep -c . || true)
-  if [ "$code" -le 2 ] && { [ "$code" -eq 0 ] || [ "$lines" -eq 1 ]; }; then clean=$((clean + 1)); else bad=$((bad + 1)); echo "NOT CLEAN: $a exit $code: $msg"; fi
-done
-rm -rf "$tmp"
-{
-  echo "libFuzzer, $minutes minutes: $(grep -o 'stat::number_of_executed_units: [0-9]*' "$log" | tail -1)"
-  grep -E '^#[0-9]+.*(DONE|cov:)' "$log" | tail -1
-  echo "artifacts (crash/leak/timeout/oom inputs): $(ls "$out"/artifacts | wc -l)"
-  ls "$out"/artifacts | sed 's/-.*//' | sort | uniq -c
-  echo "through skinned-decimate: $clean clean (exit 0, or 1-2 with one line), $bad not clean"
-} | tee "$out/summary.txt"
-[ "$bad" -eq 0 ]
+# Every finding through the CLI, and where each happens.
+bench/fuzz-triage.sh "$out" "$minutes"
