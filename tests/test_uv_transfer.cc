@@ -47,6 +47,16 @@ TEST(UvTransfer, AllZeroUvsAreNotBookkept) {
   EXPECT_FALSE(uv.active());
 }
 
+TEST(UvTransfer, BorderHalfedgesDoNotCount) {
+  // A border halfedge has no face; whatever its UV holds, the mesh has no UVs to keep.
+  Mesh mesh = grid_with_seam();
+  for (auto h : mesh.halfedges())
+    mesh.set_texcoord2D(h, mesh.is_boundary(h) ? Mesh::TexCoord2D(3.5f, -1.0f) : Mesh::TexCoord2D(0, 0));
+  UvTransferT<Mesh> uv(mesh);
+  uv.prepare();
+  EXPECT_FALSE(uv.active());
+}
+
 TEST(UvTransfer, AMovedVertexTakesTheUvOfWhereItLandsInItsOwnChart) {
   Mesh mesh = grid_with_seam();
   UvTransferT<Mesh> uv(mesh);

@@ -94,6 +94,7 @@ tinygltf::Mesh write_mesh(const SkinnedMesh& mesh, BufferWriter& buf, const std:
   const bool has_uv = [&] {
     if (!mesh.has_halfedge_texcoords2D()) return false;
     for (auto heh : mesh.halfedges()) {
+      if (mesh.is_boundary(heh)) continue;  // no face, no corner: its UV is never set
       const auto t = mesh.texcoord2D(heh);
       if (std::isfinite(t[0]) && std::isfinite(t[1]) && t != SkinnedMesh::TexCoord2D(0, 0)) return true;
     }
