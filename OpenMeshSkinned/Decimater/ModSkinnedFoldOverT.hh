@@ -61,7 +61,7 @@ protected:
     this->solver().placement_of(ci, rest, w);
     return this->solver().flips(ci, rest, w, min_cos_) ? float(Base::ILLEGAL_COLLAPSE) : float(Base::LEGAL_COLLAPSE);
   }
-  void contribute(SolverSettings& s, EdgeModelT<MeshT>*&) const override {
+  void contribute(SolverSettings& s) const override {
     // With several fold-over modules the strictest wins.
     s.fold_cos = s.fold_check ? std::max(s.fold_cos, min_cos_) : min_cos_;
     s.fold_check = true;

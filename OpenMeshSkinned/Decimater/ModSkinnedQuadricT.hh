@@ -54,7 +54,7 @@ protected:
     this->solver().note_legal_priority(ci, r.error);
     return static_cast<float>(std::min<double>(r.error, FLT_MAX / 2));
   }
-  void contribute(SolverSettings& s, EdgeModelT<MeshT>*&) const override {
+  void contribute(SolverSettings& s) const override {
     s.placement = true;
     s.max_iterations = max_iterations_;
   }

@@ -62,7 +62,7 @@ protected:
     this->solver().placement_of(ci, rest, w);
     return w.size() <= max_influences_ ? float(Base::LEGAL_COLLAPSE) : float(Base::ILLEGAL_COLLAPSE);
   }
-  void contribute(SolverSettings& s, EdgeModelT<MeshT>*&) const override {
+  void contribute(SolverSettings& s) const override {
     s.max_influences = std::min(s.max_influences, max_influences_);
     s.strategy = strategy_;
   }

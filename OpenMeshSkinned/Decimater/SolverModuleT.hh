@@ -55,7 +55,7 @@ protected:
   virtual float price(const CollapseInfo& ci) = 0;
   /// Call after changing anything contribute() reports.
   void settings_changed() { solver_->refresh_settings(); }
-  void contribute(SolverSettings&, EdgeModelT<MeshT>*&) const override {}
+  void contribute(SolverSettings&) const override {}
 
 private:
   std::shared_ptr<CollapseSolverT<MeshT>> solver_;

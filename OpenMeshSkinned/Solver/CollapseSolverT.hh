@@ -55,8 +55,10 @@ template <typename Mesh>
 class SolverClientT {
 public:
   virtual ~SolverClientT() = default;
-  /// Adds this module's wishes to \p s; a placing module may also offer its own edge model.
-  virtual void contribute(SolverSettings& s, EdgeModelT<Mesh>*& model) const = 0;
+  /// Adds this module's wishes to \p s.
+  virtual void contribute(SolverSettings& s) const = 0;
+  /// A placing module's own cost model, replacing the skinned quadric; null for the others.
+  virtual EdgeModelT<Mesh>* edge_model() { return nullptr; }
 };
 
 template <typename Mesh>
@@ -84,12 +86,12 @@ public:
   /// Forgets every cached edge answer (a setting or a module's cost model changed).
   void invalidate_cache() { cache_.invalidate(); }
 
-  void attach(const SolverClientT<Mesh>* m) {
+  void attach(SolverClientT<Mesh>* m) {
     clients_.push_back(m);
     refresh_settings();
   }
   /// Returns true when no module is left.
-  bool detach(const SolverClientT<Mesh>* m) {
+  bool detach(SolverClientT<Mesh>* m) {
     clients_.erase(std::remove(clients_.begin(), clients_.end(), m), clients_.end());
     refresh_settings();
     return clients_.empty();
@@ -98,7 +100,10 @@ public:
   void refresh_settings() {
     SolverSettings s;
     EdgeModelT<Mesh>* model = nullptr;
-    for (const auto* c : clients_) c->contribute(s, model);
+    for (auto* c : clients_) {
+      c->contribute(s);
+      if (!model) model = c->edge_model();
+    }
     set_settings(s);
     set_edge_model(model);
   }
@@ -297,7 +302,7 @@ private:
   Mesh& mesh_;
   SolverSettings settings_;
   EdgeModelT<Mesh>* model_ = nullptr;
-  std::vector<const SolverClientT<Mesh>*> clients_;
+  std::vector<SolverClientT<Mesh>*> clients_;
   OpenMesh::VPropHandleT<Influences> h_inf_;
   PoseCacheT<Mesh> poses_;
   UvTransferT<Mesh> uv_;

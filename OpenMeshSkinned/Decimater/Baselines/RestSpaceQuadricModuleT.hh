@@ -56,10 +56,8 @@ protected:
     this->solver().note_legal_priority(ci, r.error);
     return static_cast<float>(std::min<double>(r.error, FLT_MAX / 2));
   }
-  void contribute(SolverSettings& s, EdgeModelT<MeshT>*& model) const override {
-    s.placement = true;
-    model = const_cast<RestSpaceQuadricModuleT*>(this);
-  }
+  void contribute(SolverSettings& s) const override { s.placement = true; }
+  EdgeModelT<MeshT>* edge_model() override { return this; }
 
 private:
   void solve_edge(typename MeshT::VertexHandle a, typename MeshT::VertexHandle b, CollapseResult& out) override {
