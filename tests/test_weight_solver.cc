@@ -123,3 +123,21 @@ TEST(WeightSolver, SingleJointIsTrivial) {
   EXPECT_NEAR(ws.solve(H, start, a), 5.0, 1e-9);
   EXPECT_EQ(a[0], 1.0);
 }
+
+TEST(WeightSolver, HugeNearlySingularGramMatricesStillGiveWeightsSummingToOne) {
+  // Characters in centimetres with scaled armatures give weight Gram matrices of 1e9 and more with a
+  // rank below the joint count: the closed form's system is then nearly singular and may return a point
+  // far off sum(a) = 1, which must not be taken as the answer.
+  std::mt19937 rng(5);
+  WeightSolver ws;
+  for (int t = 0; t < 200; ++t) {
+    const int m = 3 + t % 4;
+    const Mat H = std::pow(10.0, 6 + t % 6) * random_gram(rng, m, 1 + t % 2);
+    Vec start = Vec::Constant(m, 0.0), a;
+    start[t % m] = 0.5;
+    start[(t + 1) % m] += 0.5;
+    ws.solve(H, start, a);
+    ASSERT_NEAR(a.sum(), 1.0, 1e-9) << "trial " << t;
+    expect_feasible(a, m);
+  }
+}

@@ -205,7 +205,11 @@ bool WeightSolver::active_set(const Mat& H, const Vec& start, double mu, const M
       support[worst] = false;
       continue;
     }
-    alpha = x;
+    // A nearly singular system (weight Gram matrices of 1e9 and more, from large coordinates) can return
+    // a point off sum(a) = 1: not an answer (Ceres takes over).
+    const double sum = x.sum();
+    if (!(std::abs(sum - 1.0) <= 1e-6)) return false;
+    alpha = x / sum;
     const int add = violated(H, start, mu, active, alpha);
     if (add < 0) return true;
     support[add] = true;
