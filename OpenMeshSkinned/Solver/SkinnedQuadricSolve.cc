@@ -1,5 +1,6 @@
 #include "OpenMeshSkinned/Solver/SkinnedQuadricSolve.hh"
 
+#include "OpenMeshSkinned/Solver/JointQuadrics.hh"
 #include "OpenMeshSkinned/Solver/TruncatedSolve.hh"
 
 #include <algorithm>
@@ -17,20 +18,21 @@ int count_nonzero(const WeightSolver::Vector& a) { return static_cast<int>((a.ar
 
 // The vertex step, then the best of it, the endpoints and the midpoint: the truncated solve is the
 // optimum only along the constrained directions, and a fully singular system has no solve at all.
-Eigen::Vector3d place(const EdgeProblem& p, const WeightSolver::Vector& a) {
+Eigen::Vector3d place(const EdgeProblem& p, const JointQuadrics& g, const WeightSolver::Vector& a) {
   const Eigen::Vector3d mid = 0.5 * (p.pa + p.pb);
   Eigen::Vector3d cand[4] = {mid, p.pa, p.pb, mid};
   bool full_rank = false;
-  int n = skinned_vertex_step(p, a, mid, cand[3], full_rank) ? 4 : 3;
+  const Eigen::Matrix4d c = g.blend(a);
+  int n = skinned_vertex_step(c, mid, cand[3], full_rank) ? 4 : 3;
   // A thin part (a tail, a finger) has quadrics whose minimum lies far along its axis: the error keeps
   // falling a little as the vertex slides out of the mesh. Optima more than an edge length beyond the
   // edge's midpoint are such valleys, not features: keep to the endpoints and the midpoint there.
   if (n == 4 && (cand[3] - mid).squaredNorm() > kMaxReach * kMaxReach * (p.pa - p.pb).squaredNorm()) n = 3;
   if (n == 4 && full_rank) return cand[3];  // the exact minimiser: nothing can beat it
   int best = 0;
-  double be = skinned_energy(p, cand[0], a);
+  double be = JointQuadrics::energy(c, cand[0]);
   for (int i = 1; i < n; ++i) {
-    const double ei = skinned_energy(p, cand[i], a);
+    const double ei = JointQuadrics::energy(c, cand[i]);
     if (ei < be) {
       be = ei;
       best = i;
@@ -40,37 +42,37 @@ Eigen::Vector3d place(const EdgeProblem& p, const WeightSolver::Vector& a) {
 }
 
 // Alternating minimisation (paper 3.1/3.2); each half-step cannot increase E, so stop when it stalls.
-double alternate(const EdgeProblem& p, const SolveSettings& s, WeightSolver& weights, int cap, WeightSolver::Vector& a,
-                 Eigen::Vector3d& v) {
+double alternate(const EdgeProblem& p, const JointQuadrics& g, const SolveSettings& s, WeightSolver& weights, int cap,
+                 WeightSolver::Vector& a, Eigen::Vector3d& v) {
   WeightSolver::Matrix H;
   double e_prev = std::numeric_limits<double>::infinity();
   double e = e_prev;
   for (int it = 0; it < std::max(1, s.max_iterations); ++it) {
-    v = place(p, a);
-    if (p.support == 1) return skinned_energy(p, v, a);
-    skinned_weight_matrix(p, v, H);
+    v = place(p, g, a);
+    if (p.support == 1) return JointQuadrics::energy(g.blend(a), v);
+    g.weight_matrix(v, H);
     e = cap < p.support ? weights.solve_capped(H, p.start, cap, s.strategy, a) : weights.solve(H, p.start, a);
     if (!(e < e_prev * (1.0 - 1e-4))) break;
     e_prev = e;
   }
-  return skinned_energy(p, v, a);
+  return JointQuadrics::energy(g.blend(a), v);
 }
 
 // As alternate(), with the weights restricted to their current support.
-double alternate_fixed_support(const EdgeProblem& p, const SolveSettings& s, WeightSolver& weights,
-                               WeightSolver::Vector& a, Eigen::Vector3d& v) {
+double alternate_fixed_support(const EdgeProblem& p, const JointQuadrics& g, const SolveSettings& s,
+                               WeightSolver& weights, WeightSolver::Vector& a, Eigen::Vector3d& v) {
   Eigen::Matrix<bool, Eigen::Dynamic, 1, 0, WeightSolver::kMaxJoints, 1> active(p.support);
   for (int k = 0; k < p.support; ++k) active[k] = a[k] > 0.0;
   WeightSolver::Matrix H;
   double e_prev = std::numeric_limits<double>::infinity();
   for (int it = 0; it < std::max(1, s.max_iterations); ++it) {
-    v = place(p, a);
-    skinned_weight_matrix(p, v, H);
+    v = place(p, g, a);
+    g.weight_matrix(v, H);
     const double e = weights.solve(H, p.start, a, &active);
     if (!(e < e_prev * (1.0 - 1e-4))) break;
     e_prev = e;
   }
-  return skinned_energy(p, v, a);
+  return JointQuadrics::energy(g.blend(a), v);
 }
 
 Influences to_influences(const EdgeProblem& p, const WeightSolver::Vector& a) {
@@ -114,48 +116,24 @@ double skinned_energy(const EdgeProblem& p, const Eigen::Vector3d& v, const Weig
   return std::max(e, 0.0);
 }
 
-bool skinned_vertex_step(const EdgeProblem& p, const WeightSolver::Vector& a, const Eigen::Vector3d& ref,
-                         Eigen::Vector3d& v, bool& full_rank) {
-  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
-  for (int j = 0; j < p.poses; ++j) {
-    Affine3 B = Affine3::Zero();
-    for (int k = 0; k < p.support; ++k) B += a[k] * p.M(j, k);
-    const Eigen::Matrix3d R = B.leftCols<3>();
-    const Eigen::Vector3d t = B.col(3);
-    const Eigen::Matrix3d Aj = p.quadric[j].A();
-    A += R.transpose() * Aj * R;
-    rhs -= R.transpose() * (Aj * t + p.quadric[j].b());
-  }
+bool skinned_vertex_step(const Eigen::Matrix4d& c, const Eigen::Vector3d& ref, Eigen::Vector3d& v, bool& full_rank) {
   full_rank = false;
-  if (!truncated_solve(A, rhs, ref, v, &full_rank)) return false;
+  if (!truncated_solve(c.topLeftCorner<3, 3>(), -c.topRightCorner<3, 1>(), ref, v, &full_rank)) return false;
   return v.allFinite();
 }
 
-void skinned_weight_matrix(const EdgeProblem& p, const Eigen::Vector3d& v, WeightSolver::Matrix& H) {
-  const int m = p.support;
-  H.setZero(m, m);
-  Eigen::Matrix<double, 4, Eigen::Dynamic, 0, 4, WeightSolver::kMaxJoints> V(4, m);
-  for (int j = 0; j < p.poses; ++j) {
-    for (int k = 0; k < m; ++k) {
-      V.col(k).head<3>() = p.M(j, k) * v.homogeneous();
-      V(3, k) = 1.0;
-    }
-    const Eigen::Matrix4d Q = p.quadric[j].matrix();
-    H.noalias() += V.transpose() * Q * V;
-  }
-}
-
 void solve_collapse(const EdgeProblem& p, const SolveSettings& s, WeightSolver& weights, CollapseResult& out) {
+  thread_local JointQuadrics g;  // 8 KB: not on every call's stack, not shared between threads
+  g.build(p);
   WeightSolver::Vector a = p.start;
   Eigen::Vector3d v;
-  double e = alternate(p, s, weights, p.support > 1 ? Influences::kCapacity : 1, a, v);
+  double e = alternate(p, g, s, weights, p.support > 1 ? Influences::kCapacity : 1, a, v);
   if (count_nonzero(a) > s.max_influences) {
     // Cap after the free optimum (paper 3.2), then optimise again on the kept joints only.
     WeightSolver::Matrix H;
-    skinned_weight_matrix(p, v, H);
+    g.weight_matrix(v, H);
     weights.solve_capped(H, p.start, s.max_influences, s.strategy, a);
-    e = alternate_fixed_support(p, s, weights, a, v);
+    e = alternate_fixed_support(p, g, s, weights, a, v);
   }
   out.valid = v.allFinite() && std::isfinite(e);
   out.position = v;
@@ -166,7 +144,9 @@ void solve_collapse(const EdgeProblem& p, const SolveSettings& s, WeightSolver& 
 Influences reduce_influences(const EdgeProblem& p, const SolveSettings& s, WeightSolver& weights) {
   WeightSolver::Vector a(p.support);
   WeightSolver::Matrix H;
-  skinned_weight_matrix(p, p.pa, H);
+  thread_local JointQuadrics g;
+  g.build(p);
+  g.weight_matrix(p.pa, H);
   weights.solve_capped(H, p.start, s.max_influences, s.strategy, a);
   return to_influences(p, a);
 }

@@ -6,7 +6,8 @@
  *
  *  minimised over the rest position v and the weights a (support: the endpoints' joints) by alternating
  *  the 3x3 vertex solve (3.1) and the constrained weight solve (3.2, WeightSolver), starting from the
- *  endpoints' average weights, until the error stops falling.
+ *  endpoints' average weights, until the error stops falling. The poses are summed out once per edge
+ *  (JointQuadrics.hh), so the alternation's steps cost the same whatever the pose count.
  *
  *  Everything the solve reads is in the EdgeProblem it is given; the mesh-facing solver (CollapseSolverT)
  *  only fills problems and applies results. The same kernel reduces a single vertex to the cap.
@@ -64,17 +65,13 @@ struct EdgeProblem {
   const Affine3& M(int j, int k) const { return transform[j * kMaxSupport + k]; }
 };
 
-/// E(v, a) of \p p.
+/// E(v, a) of \p p by its definition, pose by pose (the solve itself sums the poses out: JointQuadrics.hh).
 double skinned_energy(const EdgeProblem& p, const Eigen::Vector3d& v, const WeightSolver::Vector& a);
 
-/** The vertex step at fixed weights: sum_j B_j^T A_j B_j v = -sum_j B_j^T (A_j t_j + b_j), B_j the
- *  blended matrix of pose j, solved by the truncated pseudo-inverse around \p ref. False when nothing is
- *  constrained; \p full_rank tells whether every direction was. */
-bool skinned_vertex_step(const EdgeProblem& p, const WeightSolver::Vector& a, const Eigen::Vector3d& ref,
-                         Eigen::Vector3d& v, bool& full_rank);
-
-/// The weight Gram matrix at a fixed position: H = sum_j V_j^T Q_j V_j, V_j's columns [M_k v; 1].
-void skinned_weight_matrix(const EdgeProblem& p, const Eigen::Vector3d& v, WeightSolver::Matrix& H);
+/** The vertex step at fixed weights: the minimiser of v~^T C v~ for the blended quadric \p c (all poses
+ *  summed, JointQuadrics::blend), solved by the truncated pseudo-inverse around \p ref. False when nothing
+ *  is constrained; \p full_rank tells whether every direction was. */
+bool skinned_vertex_step(const Eigen::Matrix4d& c, const Eigen::Vector3d& ref, Eigen::Vector3d& v, bool& full_rank);
 
 /// The optimal merged vertex for \p p within \p s's cap.
 void solve_collapse(const EdgeProblem& p, const SolveSettings& s, WeightSolver& weights, CollapseResult& out);
