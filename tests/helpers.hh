@@ -142,10 +142,12 @@ struct RunResult {
   size_t faces_before = 0, faces_after = 0, collapses = 0, flipped = 0, forced = 0, fallbacks = 0;
 };
 
-/// Decimates \p mesh to \p ratio of its faces with the chosen modules and a FlipWatcher after them.
-inline RunResult decimate(Mesh& mesh, double ratio, const Modules& m = {}) {
+/** Decimates \p mesh to \p ratio of its faces with the chosen modules and a FlipWatcher after them, driven
+ *  by \p Decimater (OpenMesh's DecimaterT by default, or OpenMeshSkinned::LazyDecimaterT). */
+template <typename Decimater = OpenMesh::Decimater::DecimaterT<Mesh>>
+RunResult decimate(Mesh& mesh, double ratio, const Modules& m = {}) {
   using namespace OpenMeshSkinned;
-  OpenMesh::Decimater::DecimaterT<Mesh> dec(mesh);
+  Decimater dec(mesh);
   typename ModSkinnedQuadricT<Mesh>::Handle hq;
   typename ModWeightCapT<Mesh>::Handle hc;
   typename ModSkinnedFoldOverT<Mesh>::Handle hf;

@@ -24,7 +24,7 @@
 namespace OpenMeshSkinned {
 
 template <typename MeshT>
-class SolverModuleT : public OpenMesh::Decimater::ModBaseT<MeshT>, protected SolverClientT<MeshT> {
+class SolverModuleT : public OpenMesh::Decimater::ModBaseT<MeshT>, protected SolverClientT<MeshT>, public BatchPricing {
   using ModBase = OpenMesh::Decimater::ModBaseT<MeshT>;
 
 public:
@@ -46,6 +46,9 @@ public:
   }
   void preprocess_collapse(const CollapseInfo& ci) override { solver_->begin_collapse(ci); }
   void postprocess_collapse(const CollapseInfo& ci) override { solver_->end_collapse(ci); }
+  /// Solves every edge ahead on \p threads threads (LazyDecimaterT calls it; the modules share one solver,
+  /// so the second module's call finds everything done).
+  void price_all_edges(int threads) override { solver_->solve_all_edges(threads); }
 
   /// The shared solver: settings and counters (solves, cache hits, Ceres calls, forced flips).
   CollapseSolverT<MeshT>& solver() { return *solver_; }

@@ -13,6 +13,7 @@
  *  it. How it relies on DecimaterT's call order is written down in SolverModuleT.hh.
  */
 
+#include "OpenMeshSkinned/Decimater/DriverHints.hh"
 #include "OpenMeshSkinned/Decimater/FoldOver.hh"
 #include "OpenMeshSkinned/Decimater/MorphTransferT.hh"
 #include "OpenMeshSkinned/Decimater/UvTransferT.hh"
@@ -24,8 +25,10 @@
 #include <OpenMesh/Tools/Decimater/CollapseInfoT.hh>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <memory>
+#include <thread>
 #include <vector>
 
 namespace OpenMeshSkinned {
@@ -113,6 +116,7 @@ public:
   /** Builds per-vertex, per-pose quadrics and posed positions from the mesh as it is now. Every module
    *  calls it from initialize(); only the first call of a decimation does the work. */
   void prepare() {
+    checks_at_pop_ = checks_at_pop(mesh_);
     if (prepared_) return;
     poses_.build();
     h_inf_ = poses_.influences();
@@ -145,10 +149,52 @@ public:
     if (model_) {
       model_->solve_edge(VertexHandle(a), VertexHandle(b), out);
     } else {
-      load_problem(VertexHandle(a), VertexHandle(b));
+      load_problem(VertexHandle(a), VertexHandle(b), problem_);
       solve_collapse(problem_, settings_, weights_, out);
     }
     return out;
+  }
+
+  /** Solves every live edge not in the cache on \p threads threads, ahead of a driver's first pricing pass
+   *  (BatchPricing). Each answer depends only on its edge's endpoints, so nothing depends on the thread
+   *  count. Not with a module's own cost model, which need not be safe to call concurrently. */
+  void solve_all_edges(int threads) {
+    if (model_ || !settings_.placement || !prepared_) return;
+    std::vector<int> todo;
+    for (auto eh : mesh_.edges()) {
+      const auto h = mesh_.halfedge_handle(eh, 0);
+      const int a = mesh_.from_vertex_handle(h).idx(), b = mesh_.to_vertex_handle(h).idx();
+      if (!cache_.find(eh.idx(), std::min(a, b), std::max(a, b))) todo.push_back(eh.idx());
+    }
+    threads = std::max(1, std::min<int>(threads, static_cast<int>(todo.size() / 256) + 1));
+    std::vector<WeightSolverStats> counts(threads);
+    std::atomic<size_t> next{0};
+    auto work = [&](int t) {
+      EdgeProblem problem;
+      WeightSolver weights;
+      weights.set_regularization(weights_.regularization());
+      weights.set_force_ceres(weights_.force_ceres());
+      constexpr size_t kBlock = 64;
+      for (size_t i0 = next.fetch_add(kBlock); i0 < todo.size(); i0 = next.fetch_add(kBlock))
+        for (size_t i = i0; i < std::min(todo.size(), i0 + kBlock); ++i) {
+          const auto h = mesh_.halfedge_handle(typename Mesh::EdgeHandle(todo[i]), 0);
+          const int a = mesh_.from_vertex_handle(h).idx(), b = mesh_.to_vertex_handle(h).idx();
+          const VertexHandle va(std::min(a, b)), vb(std::max(a, b));
+          load_problem(va, vb, problem);
+          solve_collapse(problem, settings_, weights, cache_.store(todo[i], va.idx(), vb.idx()));
+        }
+      counts[t] = weights.stats();
+    };
+    std::vector<std::thread> pool;
+    for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
+    work(0);
+    for (auto& th : pool) th.join();
+    stats_.solves += todo.size();
+    for (const auto& c : counts) {
+      batch_weights_.solves += c.solves;
+      batch_weights_.kkt_feasible += c.kkt_feasible;
+      batch_weights_.ceres_calls += c.ceres_calls;
+    }
   }
 
   /** Whether collapsing \p ci, with the merged vertex at \p rest with skin \p w, turns any remaining face
@@ -176,13 +222,20 @@ public:
 
   // ---- pricing (see SolverModuleT.hh) ----------------------------------------------------------------------
 
+  // Under a driver that asks binary modules at pop time (checks_at_pop) verdicts are never stale and
+  // the priority module is asked alone: the sweep bookkeeping, the shortcut and the deferral are off.
+
   /// Every module calls this first in collapse_priority (SolverModuleT does).
-  void begin_pricing(const CollapseInfo& ci) { stale_.begin_pricing(ci); }
+  void begin_pricing(const CollapseInfo& ci) {
+    if (!checks_at_pop_) stale_.begin_pricing(ci);
+  }
   /// The priority module reports a collapse that every binary module accepted, with its cost.
-  void note_legal_priority(const CollapseInfo& ci, double error) { stale_.note_legal(ci, error); }
+  void note_legal_priority(const CollapseInfo& ci, double error) {
+    if (!checks_at_pop_) stale_.note_legal(ci, error);
+  }
   /// Whether \p ci cannot win over a legal collapse already priced for the same v0 (its checks can be skipped).
   bool cannot_win(const CollapseInfo& ci) {
-    return settings_.placement && stale_.has_legal(ci.v0) && solve(ci).error >= stale_.best_error();
+    return !checks_at_pop_ && settings_.placement && stale_.has_legal(ci.v0) && solve(ci).error >= stale_.best_error();
   }
 
   // ---- collapse (every module forwards its pre/postprocess; the first call does the work) ----------------
@@ -196,7 +249,7 @@ public:
     morph_.record(ci.v0, ci.v1);
     if (!settings_.placement) return;
     pending_result_ = solve(ci);
-    if (settings_.fold_check && pending_result_.valid &&
+    if (settings_.fold_check && !checks_at_pop_ && pending_result_.valid &&
         flips(ci, pending_result_.position, pending_result_.weights, settings_.fold_cos))
       replace_stale_placement(ci);
   }
@@ -224,7 +277,7 @@ public:
     cache_.touch(v0.idx());
     // Moved or not, v1 now holds v0's faces: verdicts around it may be stale. (After the stamps: the
     // re-checks must not reuse answers cached for v1 as it was.)
-    if (settings_.placement && settings_.fold_check)
+    if (settings_.placement && settings_.fold_check && !checks_at_pop_)
       stats_.deferred += stale_.defer_around(v1, [this](const CollapseInfo& zc) {
         Eigen::Vector3d rest;
         Influences w;
@@ -251,21 +304,24 @@ public:
   CollapseSolverStats stats() const {
     CollapseSolverStats s = stats_;
     s.weights = weights_.stats();
+    s.weights.solves += batch_weights_.solves;
+    s.weights.kkt_feasible += batch_weights_.kkt_feasible;
+    s.weights.ceres_calls += batch_weights_.ceres_calls;
     return s;
   }
   WeightSolver& weight_solver() { return weights_; }
 
 private:
-  void load_problem(VertexHandle va, VertexHandle vb) {
-    problem_.set_skins(mesh_.property(h_inf_, va), mesh_.property(h_inf_, vb));
-    problem_.resize(poses_.n_poses());
+  void load_problem(VertexHandle va, VertexHandle vb, EdgeProblem& problem) const {
+    problem.set_skins(mesh_.property(h_inf_, va), mesh_.property(h_inf_, vb));
+    problem.resize(poses_.n_poses());
     for (int j = 0; j < poses_.n_poses(); ++j) {
-      problem_.quadric[j] = poses_.quadric(va, j);
-      if (vb != va) problem_.quadric[j] += poses_.quadric(vb, j);
-      problem_.set_pose(j, poses_.pose(j));
+      problem.quadric[j] = poses_.quadric(va, j);
+      if (vb != va) problem.quadric[j] += poses_.quadric(vb, j);
+      problem.set_pose(j, poses_.pose(j));
     }
-    problem_.pa = to_eigen(mesh_.point(va));
-    problem_.pb = to_eigen(mesh_.point(vb));
+    problem.pa = to_eigen(mesh_.point(va));
+    problem.pb = to_eigen(mesh_.point(vb));
   }
 
   // DecimaterT does not re-ask binary modules when it pops a collapse, and it re-asks only the vertices
@@ -293,7 +349,7 @@ private:
 
   // A vertex with too many bones: weight solve on its own quadrics at its own position, capped.
   void reduce_vertex(VertexHandle vh) {
-    load_problem(vh, vh);
+    load_problem(vh, vh, problem_);
     mesh_.property(h_inf_, vh) = reduce_influences(problem_, settings_, weights_);
     poses_.update(vh);
     cache_.touch(vh.idx());
@@ -310,11 +366,13 @@ private:
   StaleVerdictsT<Mesh> stale_;
   EdgeCache cache_;
   bool prepared_ = false;
+  bool checks_at_pop_ = false;
   bool pending_ = false;
   CollapseResult pending_result_;
   EdgeProblem problem_;  // reused: no allocation per solve once grown
   mutable std::vector<RingFace> ring_faces_;
   WeightSolver weights_;
+  WeightSolverStats batch_weights_;  // solve_all_edges()'s workers' counts
   CollapseSolverStats stats_;
 };
 

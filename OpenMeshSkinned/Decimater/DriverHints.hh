@@ -1,0 +1,46 @@
+#pragma once
+/** \file DriverHints.hh
+ *  What a decimater driver tells the modules, and what a module offers a driver, beyond ModBaseT.
+ *
+ *  OpenMesh's DecimaterT asks binary modules when it prices a collapse and never again; LazyDecimaterT asks
+ *  them when it pops one. A module that works around stale verdicts (the shared solver's deferral) must
+ *  know which driver it is in: the driver says so with a named mesh property, since ModBaseT has no hook.
+ */
+
+#include <OpenMesh/Core/Utils/Property.hh>
+
+namespace OpenMeshSkinned {
+
+/// Named mesh property (bool), present and true while a driver asks binary modules at pop time.
+inline constexpr const char* kChecksAtPopProperty = "m:omsk_checks_at_pop";
+
+/// Whether the driver decimating \p mesh asks binary modules right before each collapse.
+template <typename Mesh>
+bool checks_at_pop(const Mesh& mesh) {
+  OpenMesh::MPropHandleT<bool> h;
+  return mesh.get_property_handle(h, kChecksAtPopProperty) && mesh.property(h);
+}
+
+/// Sets or clears the mark checks_at_pop() reads (the property is removed when cleared).
+template <typename Mesh>
+void set_checks_at_pop(Mesh& mesh, bool on) {
+  OpenMesh::MPropHandleT<bool> h;
+  const bool has = mesh.get_property_handle(h, kChecksAtPopProperty);
+  if (on) {
+    if (!has) mesh.add_property(h, kChecksAtPopProperty);
+    mesh.property(h) = true;
+  } else if (has) {
+    mesh.remove_property(h);
+  }
+}
+
+/** A module that can compute the answers for every edge ahead of the driver's first pricing pass, on
+ *  several threads, with answers that do not depend on the thread count. The driver still asks it edge by
+ *  edge afterwards; the module answers from what it computed. */
+class BatchPricing {
+public:
+  virtual ~BatchPricing() = default;
+  virtual void price_all_edges(int threads) = 0;
+};
+
+}  // namespace OpenMeshSkinned

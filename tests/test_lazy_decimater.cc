@@ -1,0 +1,180 @@
+// LazyDecimaterT: DecimaterT's interface and results, binary modules asked right before each collapse,
+// answers that do not depend on the thread count.
+#include "helpers.hh"
+
+#include <OpenMeshSkinned/Decimater/LazyDecimaterT.hh>
+#include <OpenMeshSkinned/Mesh/Procedural.hh>
+
+#include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
+#include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
+
+using namespace OpenMeshSkinned;
+using omsk_test::Mesh;
+using Lazy = LazyDecimaterT<Mesh>;
+
+namespace {
+
+size_t live_faces(const Mesh& m) {
+  size_t n = 0;
+  for (auto f : m.faces()) (void)f, ++n;
+  return n;
+}
+
+// Mean RMS distance over a mesh's example poses (fraction of the diagonal).
+double mean_posed_rms(const Mesh& original, const Mesh& lod) {
+  double sum = 0.0;
+  for (const auto& pose : example_poses(original)) sum += omsk_test::posed_rms(original, lod, pose);
+  return sum / example_poses(original).size();
+}
+
+// Held-out frames: the clip sampled between the example poses.
+double held_out_rms(const Mesh& original, const Mesh& lod) {
+  const auto frames = sample_poses_evenly(skeleton(original), clips(original)[0], 7);
+  double sum = 0.0;
+  for (const auto& pose : frames) sum += omsk_test::posed_rms(original, lod, pose);
+  return sum / frames.size();
+}
+
+template <typename Decimater>
+size_t static_decimate(Mesh& mesh, size_t faces) {
+  Decimater dec(mesh);
+  OpenMesh::Decimater::ModQuadricT<Mesh>::Handle hq;
+  OpenMesh::Decimater::ModNormalFlippingT<Mesh>::Handle hn;
+  dec.add(hq);
+  dec.add(hn);
+  EXPECT_TRUE(dec.initialize());
+  return dec.decimate_to_faces(0, faces);
+}
+
+struct Call {
+  bool binary;
+  bool collapse;
+  int v0, v1;
+};
+std::vector<Call> g_calls;
+
+template <typename MeshT>
+class RecorderT : public OpenMesh::Decimater::ModBaseT<MeshT> {
+public:
+  DECIMATING_MODULE(RecorderT, MeshT, Recorder);
+  explicit RecorderT(MeshT& mesh) : Base(mesh, true) {}
+  float collapse_priority(const CollapseInfo& ci) override {
+    g_calls.push_back({true, false, ci.v0.idx(), ci.v1.idx()});
+    // Refuses a deterministic share, so refusals at pop time are exercised.
+    return (ci.v0.idx() * 7 + ci.v1.idx()) % 5 == 0 ? float(Base::ILLEGAL_COLLAPSE) : float(Base::LEGAL_COLLAPSE);
+  }
+  void preprocess_collapse(const CollapseInfo& ci) override {
+    g_calls.push_back({true, true, ci.v0.idx(), ci.v1.idx()});
+  }
+};
+
+}  // namespace
+
+TEST(LazyDecimater, OpenMeshsOwnModulesReachTheTargetWithDecimaterTsError) {
+  const Mesh original = make_bending_cylinder(24, 48);
+  const size_t target = original.n_faces() / 10;
+  Mesh a = original, b = original;
+  static_decimate<OpenMesh::Decimater::DecimaterT<Mesh>>(a, target);
+  static_decimate<Lazy>(b, target);
+  EXPECT_EQ(live_faces(a), live_faces(b));
+  EXPECT_LE(live_faces(b), target);
+  a.garbage_collection();
+  b.garbage_collection();
+  const double ea = mean_posed_rms(original, a), eb = mean_posed_rms(original, b);
+  EXPECT_GT(ea, 0.0);
+  EXPECT_LE(eb, 1.05 * ea) << "lazy " << eb << " vs DecimaterT " << ea;
+}
+
+TEST(LazyDecimater, SkinnedModulesHoldOutAsWellAsUnderDecimaterTAndNeverFold) {
+  const Mesh original = make_bending_cylinder(16, 32);
+  Mesh a = original, b = original;
+  const auto ra = omsk_test::decimate(a, 0.1);
+  const auto rb = omsk_test::decimate<Lazy>(b, 0.1);
+  // Within one collapse of each other: a boundary collapse removes one face, others two.
+  EXPECT_LE(rb.faces_after, size_t(0.1 * original.n_faces()));
+  EXPECT_LE(std::max(ra.faces_after, rb.faces_after) - std::min(ra.faces_after, rb.faces_after), 2u);
+  EXPECT_EQ(rb.flipped, 0u) << "verdicts asked right before the collapse cannot be stale";
+  EXPECT_EQ(rb.forced, 0u);
+  EXPECT_EQ(rb.fallbacks, 0u);
+  for (auto vh : b.vertices()) EXPECT_FALSE(b.status(vh).locked()) << "no deferral under the lazy driver";
+  omsk_test::expect_valid_skin(b, 4);
+  const double ea = held_out_rms(original, a), eb = held_out_rms(original, b);
+  EXPECT_LE(eb, 1.05 * ea) << "lazy " << eb << " vs DecimaterT " << ea;
+  std::cout << "held-out RMS: DecimaterT " << ea << ", lazy " << eb << "\n";
+}
+
+TEST(LazyDecimater, BinaryModulesAreAskedRightBeforeEachCollapseAndTheirRefusalsHold) {
+  Mesh mesh = make_bending_cylinder(8, 12);
+  Lazy dec(mesh);
+  OpenMesh::Decimater::ModQuadricT<Mesh>::Handle hq;
+  RecorderT<Mesh>::Handle hr;
+  dec.add(hq);
+  dec.add(hr);
+  ASSERT_TRUE(dec.initialize());
+  g_calls.clear();
+  const size_t n = dec.decimate(40);
+  EXPECT_EQ(n, 40u);
+  size_t collapses = 0;
+  for (size_t i = 0; i < g_calls.size(); ++i) {
+    if (!g_calls[i].collapse) continue;
+    ++collapses;
+    ASSERT_GT(i, 0u);
+    const Call& asked = g_calls[i - 1];
+    EXPECT_TRUE(!asked.collapse && asked.v0 == g_calls[i].v0 && asked.v1 == g_calls[i].v1)
+        << "collapse " << collapses << " was not checked right before it was made";
+    EXPECT_NE((asked.v0 * 7 + asked.v1) % 5, 0) << "a refused collapse was made";
+  }
+  EXPECT_EQ(collapses, n);
+  EXPECT_GT(dec.stats().refused, 0u);
+}
+
+TEST(LazyDecimater, TheResultDoesNotDependOnTheThreadCount) {
+  const Mesh original = make_bending_cylinder(16, 24);
+  Mesh meshes[2] = {original, original};
+  for (int t = 0; t < 2; ++t) {
+    Lazy dec(meshes[t]);
+    ModSkinnedQuadricT<Mesh>::Handle hq;
+    ModWeightCapT<Mesh>::Handle hc;
+    ModSkinnedFoldOverT<Mesh>::Handle hf;
+    dec.add(hq);
+    dec.add(hc);
+    dec.add(hf);
+    dec.set_threads(t == 0 ? 1 : 3);
+    ASSERT_TRUE(dec.initialize());
+    dec.decimate_to_faces(0, original.n_faces() / 5);
+    EXPECT_GT(dec.stats().collapses, original.n_vertices() / 2);
+    meshes[t].garbage_collection();
+  }
+  ASSERT_EQ(meshes[0].n_vertices(), meshes[1].n_vertices());
+  ASSERT_EQ(meshes[0].n_faces(), meshes[1].n_faces());
+  const auto h = influences_handle(original);
+  for (auto vh : meshes[0].vertices()) {
+    EXPECT_EQ(meshes[0].point(vh), meshes[1].point(vh));
+    EXPECT_EQ(meshes[0].property(h, vh).size(), meshes[1].property(h, vh).size());
+  }
+  for (auto fh : meshes[0].faces()) {
+    auto a = meshes[0].fv_range(fh).to_vector(), b = meshes[1].fv_range(fh).to_vector();
+    EXPECT_EQ(a, b);
+  }
+}
+
+TEST(LazyDecimater, InitializeNeedsExactlyOnePriorityModuleAndTheMarkIsRemovedAfterwards) {
+  Mesh mesh = make_bending_cylinder(8, 8);
+  {
+    Lazy dec(mesh);
+    RecorderT<Mesh>::Handle hr;
+    dec.add(hr);
+    EXPECT_FALSE(dec.initialize()) << "no priority module";
+    EXPECT_EQ(dec.decimate(5), 0u);
+    OpenMesh::Decimater::ModQuadricT<Mesh>::Handle hq;
+    ModSkinnedQuadricT<Mesh>::Handle hs;
+    dec.add(hq);
+    dec.add(hs);
+    EXPECT_FALSE(dec.initialize()) << "two priority modules";
+    dec.remove(hs);
+    EXPECT_TRUE(dec.initialize());
+    EXPECT_TRUE(checks_at_pop(mesh));
+    EXPECT_EQ(dec.decimate(5), 5u);
+  }
+  EXPECT_FALSE(checks_at_pop(mesh));
+}
