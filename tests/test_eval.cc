@@ -47,3 +47,19 @@ TEST(SurfaceDistance, ErrorGrowsAsTheLodShrinksOnARealCharacter) {
     previous = e;
   }
 }
+
+TEST(SurfaceDistance, APreparedSurfaceMeasuresAgainstManyAsAFreshOneWould) {
+  const Mesh mesh = make_bending_cylinder(16, 16);
+  const auto original = posed_soup(mesh, example_poses(mesh)[1]);
+  const MeasuredSurface prepared(original, 3000, 1);
+  for (double z : {0.01, 0.05, 0.2}) {
+    TriangleSoup other = original;
+    for (auto& p : other.points) p.z() += z;
+    const auto reused = surface_distance(prepared, MeasuredSurface(other, 3000, 7));
+    const auto fresh = surface_distance(MeasuredSurface(original, 3000, 1), MeasuredSurface(other, 3000, 7));
+    EXPECT_EQ(reused.rms, fresh.rms);
+    EXPECT_EQ(reused.hausdorff, fresh.hausdorff);
+    EXPECT_GT(reused.rms, 0.0);
+    EXPECT_LE(reused.hausdorff, z + 1e-9);
+  }
+}

@@ -63,14 +63,33 @@ std::vector<Point> samples(const TriangleSoup& from, size_t n, std::mt19937_64& 
   return pts;
 }
 
-void one_way(const TriangleSoup& from, const TriangleSoup& to, size_t n, std::mt19937_64& rng, double& sum_sq,
-             double& max_d, size_t& count) {
-  const std::vector<Triangle> tris = to_cgal(to);
-  if (tris.empty()) return;
-  Tree tree(tris.begin(), tris.end());
-  tree.accelerate_distance_queries();
-  for (const Point& p : samples(from, n, rng)) {
-    const double d2 = tree.squared_distance(p);
+}  // namespace
+
+struct MeasuredSurface::Impl {
+  std::vector<Triangle> triangles;
+  std::unique_ptr<Tree> tree;  // null for a surface without triangles
+  std::vector<Point> samples;
+};
+
+MeasuredSurface::MeasuredSurface(const TriangleSoup& soup, size_t n, uint64_t seed) : impl_(std::make_unique<Impl>()) {
+  std::mt19937_64 rng(seed);
+  impl_->samples = samples(soup, n, rng);
+  impl_->triangles = to_cgal(soup);
+  if (impl_->triangles.empty()) return;
+  impl_->tree = std::make_unique<Tree>(impl_->triangles.begin(), impl_->triangles.end());
+  impl_->tree->accelerate_distance_queries();
+}
+MeasuredSurface::~MeasuredSurface() = default;
+MeasuredSurface::MeasuredSurface(MeasuredSurface&&) noexcept = default;
+MeasuredSurface& MeasuredSurface::operator=(MeasuredSurface&&) noexcept = default;
+
+namespace {
+
+void one_way(const MeasuredSurface::Impl& from, const MeasuredSurface::Impl& to, double& sum_sq, double& max_d,
+             size_t& count) {
+  if (!to.tree) return;
+  for (const Point& p : from.samples) {
+    const double d2 = to.tree->squared_distance(p);
     sum_sq += d2;
     max_d = std::max(max_d, std::sqrt(d2));
     ++count;
@@ -79,17 +98,21 @@ void one_way(const TriangleSoup& from, const TriangleSoup& to, size_t n, std::mt
 
 }  // namespace
 
-SurfaceDistance surface_distance(const TriangleSoup& a, const TriangleSoup& b, size_t n, uint64_t seed) {
-  std::mt19937_64 rng(seed);
+SurfaceDistance surface_distance(const MeasuredSurface& a, const MeasuredSurface& b) {
   double sum_sq = 0.0, max_d = 0.0;
   size_t count = 0;
-  one_way(a, b, n, rng, sum_sq, max_d, count);
-  one_way(b, a, n, rng, sum_sq, max_d, count);
+  one_way(a.impl(), b.impl(), sum_sq, max_d, count);
+  one_way(b.impl(), a.impl(), sum_sq, max_d, count);
   SurfaceDistance d;
   d.samples = count;
   d.rms = count ? std::sqrt(sum_sq / count) : 0.0;
   d.hausdorff = max_d;
   return d;
+}
+
+SurfaceDistance surface_distance(const TriangleSoup& a, const TriangleSoup& b, size_t n, uint64_t seed) {
+  // Each surface its own stream, so that a surface measured against many keeps the same samples.
+  return surface_distance(MeasuredSurface(a, n, seed), MeasuredSurface(b, n, seed + 0x9E3779B97F4A7C15ull));
 }
 
 }  // namespace OpenMeshSkinned

@@ -11,6 +11,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace OpenMeshSkinned {
@@ -26,6 +27,26 @@ struct SurfaceDistance {
   double hausdorff = 0.0;  ///< largest sample distance (both directions)
   size_t samples = 0;
 };
+
+/** A surface ready to be measured against, any number of times: its triangles in an AABB tree, built once,
+ *  and its own samples (its vertices plus \p samples points by area, drawn with \p seed). A posed original
+ *  is built once per frame and measured against every LOD and method; safe to share between threads. */
+class MeasuredSurface {
+public:
+  MeasuredSurface(const TriangleSoup& soup, size_t samples, uint64_t seed);
+  ~MeasuredSurface();
+  MeasuredSurface(MeasuredSurface&&) noexcept;
+  MeasuredSurface& operator=(MeasuredSurface&&) noexcept;
+
+  struct Impl;
+  const Impl& impl() const { return *impl_; }
+
+private:
+  std::unique_ptr<Impl> impl_;
+};
+
+/// Distance between two prepared surfaces: each one's samples to the other's triangles, pooled.
+SurfaceDistance surface_distance(const MeasuredSurface& a, const MeasuredSurface& b);
 
 /** Distance between \p a and \p b with about \p samples_per_surface area samples on each (plus vertices).
  *  Deterministic for a given \p seed. */
