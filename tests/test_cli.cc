@@ -111,3 +111,37 @@ TEST(Cli, NoAnimationWithPosesExplainsAndRunsInRestPose) {
   EXPECT_TRUE(fs::exists(d / "t.glb"));
   omsk_test::expect_valid_gltf((d / "t.glb").string());
 }
+
+TEST(Cli, ThreadCountChangesNothingAndNoEvalSkipsOnlyTheError) {
+  const auto d = scratch("threads");
+  nlohmann::json rep[3];
+  const char* extra[3] = {"--threads 1", "--threads 2", "--threads 2 --no-eval"};
+  for (int i = 0; i < 3; ++i) {
+    const auto r = cli(wuson + " -o w" + std::to_string(i) + ".glb --lods 0.5,0.2 --report r" + std::to_string(i) +
+                           ".json --quiet " + extra[i],
+                       d);
+    ASSERT_EQ(r.code, 0) << r.out;
+    std::ifstream(d / ("r" + std::to_string(i) + ".json")) >> rep[i];
+    if (i == 2) {
+      EXPECT_NE(r.out.find("             -              -"), std::string::npos) << r.out;
+    }
+  }
+  for (int l = 0; l < 2; ++l) {
+    EXPECT_EQ(rep[0]["lods"][l]["faces"], rep[1]["lods"][l]["faces"]);
+    EXPECT_EQ(rep[0]["lods"][l]["heldout_rms"], rep[1]["lods"][l]["heldout_rms"]) << "evaluation depends on threads";
+    EXPECT_EQ(rep[0]["lods"][l]["heldout_hausdorff"], rep[1]["lods"][l]["heldout_hausdorff"]);
+    EXPECT_GT(rep[0]["lods"][l]["heldout_rms"].get<double>(), 0.0);
+    EXPECT_EQ(rep[2]["lods"][l]["faces"], rep[1]["lods"][l]["faces"]);
+    EXPECT_TRUE(rep[2]["lods"][l]["heldout_rms"].is_null());
+  }
+  // The same LOD files whatever the thread count (the decimation does not depend on it).
+  for (const char* lod : {"_lod1.glb", "_lod2.glb"}) {
+    std::ifstream a(d / (std::string("w0") + lod), std::ios::binary),
+        b(d / (std::string("w1") + lod), std::ios::binary);
+    const std::string sa((std::istreambuf_iterator<char>(a)), {}), sb((std::istreambuf_iterator<char>(b)), {});
+    EXPECT_FALSE(sa.empty());
+    EXPECT_EQ(sa, sb) << lod;
+  }
+  EXPECT_GT(rep[0]["seconds"]["evaluate"].get<double>(), 0.0);
+  EXPECT_GT(rep[0]["import_seconds"].get<double>(), 0.0);
+}

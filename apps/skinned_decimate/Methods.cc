@@ -3,11 +3,11 @@
 #include <OpenMeshSkinned/Decimater/Baselines/ModDeformationSensitiveT.hh>
 #include <OpenMeshSkinned/Decimater/Baselines/ModPoseIndependentQuadricT.hh>
 #include <OpenMeshSkinned/Decimater/Baselines/ModRestPoseQuadricT.hh>
+#include <OpenMeshSkinned/Decimater/LazyDecimaterT.hh>
 #include <OpenMeshSkinned/Decimater/ModSkinnedFoldOverT.hh>
 #include <OpenMeshSkinned/Decimater/ModSkinnedQuadricT.hh>
 #include <OpenMeshSkinned/Decimater/ModWeightCapT.hh>
 
-#include <OpenMesh/Tools/Decimater/DecimaterT.hh>
 #include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
 #include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
 #include <OpenMesh/Tools/Decimater/Observer.hh>
@@ -24,7 +24,8 @@ namespace skinned_decimate {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-using Decimater = OpenMesh::Decimater::DecimaterT<Mesh>;
+// The lazy driver: verdicts asked right before each collapse, edges solved ahead on --threads threads.
+using Decimater = OpenMeshSkinned::LazyDecimaterT<Mesh>;
 
 // The modules a chain may use; each method adds its own.
 struct Handles {
@@ -126,6 +127,7 @@ std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vect
   it->add(dec, h);
   dec.add(h.cap);
   dec.module(h.cap).set_max_influences(opt.max_influences);
+  if (opt.threads > 0) dec.set_threads(opt.threads);
   if (!dec.initialize()) throw std::runtime_error("the decimater did not initialize");
   Progress progress(!opt.quiet && isatty(2), input.n_vertices() - targets.back() / 2, label);
   dec.set_observer(&progress);
@@ -140,7 +142,6 @@ std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vect
     size_t live = 0;
     for (auto fh : mesh.faces()) (void)fh, ++live;
     collapses += dec.decimate_to_faces(0, targets[i] + (mesh.n_faces() - live));
-    if (h.fold_over.is_valid()) dec.module(h.fold_over).release_deferred();  // every vertex gets a chance next level
     Lod lod;
     lod.ratio = ratios[i];
     lod.target = targets[i];

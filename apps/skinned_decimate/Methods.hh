@@ -28,6 +28,7 @@ struct Lod {
   size_t faces = 0, vertices = 0;
   double seconds = 0.0;
   int max_influences = 0;
+  bool evaluated = false;             // false with --no-eval
   double rms = 0.0, hausdorff = 0.0;  // % of the rest-pose bounding-box diagonal
   std::string file;
 };

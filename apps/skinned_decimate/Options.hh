@@ -27,6 +27,8 @@ struct Options {
   bool isolate = true;
   size_t max_memory_mb = 8192;
   double time_limit = 300.0;
+  int threads = 0;  // 0: the hardware's
+  bool evaluate = true;
 };
 
 // Past this many example poses the schedule stops being a sample of the clips and becomes the clips.

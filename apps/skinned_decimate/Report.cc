@@ -14,6 +14,9 @@ json times_json(const std::vector<OpenMeshSkinned::Clip>& clips, const std::vect
   return a;
 }
 
+// An error column of the report: "-" when not measured (--no-eval).
+std::string error_cell(const json& v) { return v.is_number() ? fmt(v.get<double>(), 4) : "-"; }
+
 }  // namespace
 
 std::string fmt(double v, int prec) {
@@ -31,8 +34,8 @@ void print_table(const std::string& title, const std::vector<std::pair<Lod, Mesh
   for (const auto& [lod, mesh] : chain)
     std::cout << "  " << std::left << std::setw(8) << fmt(lod.ratio, 4) << std::right << std::setw(10) << lod.faces
               << std::setw(10) << lod.vertices << std::setw(10) << fmt(lod.seconds, 2) << std::setw(10)
-              << lod.max_influences << std::setw(14) << fmt(lod.rms, 4) << std::setw(15) << fmt(lod.hausdorff, 4)
-              << "\n";
+              << lod.max_influences << std::setw(14) << (lod.evaluated ? fmt(lod.rms, 4) : "-") << std::setw(15)
+              << (lod.evaluated ? fmt(lod.hausdorff, 4) : "-") << "\n";
   for (const auto& [lod, mesh] : chain)
     if (lod.faces > lod.target)
       std::cout << "  ratio " << fmt(lod.ratio, 4) << ": target of " << lod.target
@@ -49,9 +52,8 @@ void print_comparison(const json& runs) {
     for (const auto& l : r["lods"])
       std::cout << "  " << std::left << std::setw(9) << r["method"].get<std::string>() << std::setw(8)
                 << fmt(l["ratio"].get<double>(), 4) << std::right << std::setw(10) << l["faces"].get<size_t>()
-                << std::setw(10) << fmt(l["seconds"].get<double>(), 2) << std::setw(14)
-                << fmt(l["heldout_rms"].get<double>(), 4) << std::setw(15)
-                << fmt(l["heldout_hausdorff"].get<double>(), 4) << "\n";
+                << std::setw(10) << fmt(l["seconds"].get<double>(), 2) << std::setw(14) << error_cell(l["heldout_rms"])
+                << std::setw(15) << error_cell(l["heldout_hausdorff"]) << "\n";
 }
 
 json lod_json(const Lod& lod, const std::vector<OpenMeshSkinned::Clip>& clips,
@@ -63,8 +65,8 @@ json lod_json(const Lod& lod, const std::vector<OpenMeshSkinned::Clip>& clips,
             {"vertices", lod.vertices},
             {"seconds", lod.seconds},
             {"max_influences", lod.max_influences},
-            {"heldout_rms", lod.rms},
-            {"heldout_hausdorff", lod.hausdorff},
+            {"heldout_rms", lod.evaluated ? json(lod.rms) : json(nullptr)},
+            {"heldout_hausdorff", lod.evaluated ? json(lod.hausdorff) : json(nullptr)},
             {"example_pose_times", times_json(clips, sched.examples)},
             {"bind_pose_in_examples", bind_pose_in_examples},
             {"heldout_times", times_json(clips, sched.held_out)}};

@@ -54,6 +54,10 @@ int main(int argc, char** argv) {
   app.add_option("--max-memory", opt.max_memory_mb,
                  "Memory limit in MB for reading the input and for the example poses (default 8192; 0 = none)");
   app.add_option("--time-limit", opt.time_limit, "Seconds the input's reader may take (default 300; 0 = none)");
+  app.add_option("--threads", opt.threads, "Threads for solving edges and measuring error (default: all cores)")
+      ->check(CLI::Range(1, 256));
+  app.add_flag("!--no-eval", opt.evaluate,
+               "Skip measuring the error in held-out frames (batch use: the table shows triangles and time only)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
