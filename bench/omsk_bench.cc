@@ -1,9 +1,11 @@
 // omsk-bench: the papers' workloads, each decimated by OpenMesh's static quadric and by the skinned modules
 // in the same process, timed; one JSON object per line per workload.
+#include <OpenMeshSkinned/Decimater/LazyDecimaterT.hh>
 #include <OpenMeshSkinned/Decimater/ModSkinnedFoldOverT.hh>
 #include <OpenMeshSkinned/Decimater/ModSkinnedQuadricT.hh>
 #include <OpenMeshSkinned/Decimater/ModWeightCapT.hh>
 #include <OpenMeshSkinned/Eval/SurfaceDistance.hh>
+#include <OpenMeshSkinned/IO/ExportGltf.hh>
 #include <OpenMeshSkinned/IO/Import.hh>
 #include <OpenMeshSkinned/Mesh/LoopSubdivision.hh>
 #include <OpenMeshSkinned/Mesh/Procedural.hh>
@@ -47,11 +49,18 @@ size_t live_faces(const Mesh& m) {
   return n;
 }
 
-// The reference: OpenMesh's own static decimation. Returns seconds (the mesh copy is not timed).
+using Classic = OpenMesh::Decimater::DecimaterT<Mesh>;
+using Lazy = OpenMeshSkinned::LazyDecimaterT<Mesh>;
+
+void set_threads(Classic&, int) {}
+void set_threads(Lazy& dec, int n) { dec.set_threads(n); }
+
+// The reference: OpenMesh's own static modules. Returns seconds (the mesh copy is not timed).
+template <typename Decimater>
 double time_static(const Mesh& input, size_t target) {
   Mesh mesh = input;
   return seconds([&] {
-    OpenMesh::Decimater::DecimaterT<Mesh> dec(mesh);
+    Decimater dec(mesh);
     OpenMesh::Decimater::ModQuadricT<Mesh>::Handle hq;
     OpenMesh::Decimater::ModNormalFlippingT<Mesh>::Handle hn;
     dec.add(hq);
@@ -62,8 +71,9 @@ double time_static(const Mesh& input, size_t target) {
 }
 
 // The skinned modules as the app uses them (fold-over at 90 degrees). Returns the solver's counters.
-json decimate_skinned(Mesh& mesh, size_t target, int cap, OpenMeshSkinned::CapStrategy strategy) {
-  OpenMesh::Decimater::DecimaterT<Mesh> dec(mesh);
+template <typename Decimater>
+json decimate_skinned(Mesh& mesh, size_t target, int cap, OpenMeshSkinned::CapStrategy strategy, int threads = 1) {
+  Decimater dec(mesh);
   OpenMeshSkinned::ModSkinnedQuadricT<Mesh>::Handle hq;
   OpenMeshSkinned::ModWeightCapT<Mesh>::Handle hc;
   OpenMeshSkinned::ModSkinnedFoldOverT<Mesh>::Handle hf;
@@ -72,6 +82,7 @@ json decimate_skinned(Mesh& mesh, size_t target, int cap, OpenMeshSkinned::CapSt
   dec.add(hf);
   dec.module(hc).set_max_influences(cap);
   dec.module(hc).set_strategy(strategy);
+  set_threads(dec, threads);
   dec.initialize();
   dec.decimate_to_faces(0, target);
   const auto& st = dec.module(hq).solver().stats();
@@ -83,20 +94,64 @@ json decimate_skinned(Mesh& mesh, size_t target, int cap, OpenMeshSkinned::CapSt
           {"forced_flips", st.forced_flips}};
 }
 
+// Mean held-out RMS (% of the diagonal) of a LOD, in frames of the clips between the example poses.
+double heldout_rms(const Mesh& original, Mesh lod) {
+  if (OpenMeshSkinned::clips(original).empty()) return 0.0;
+  lod.garbage_collection();
+  const auto sched = OpenMeshSkinned::make_pose_schedule(OpenMeshSkinned::clips(original),
+                                                         int(OpenMeshSkinned::example_poses(original).size()), -1);
+  const auto frames =
+      OpenMeshSkinned::poses_at(OpenMeshSkinned::skeleton(original), OpenMeshSkinned::clips(original), sched.held_out);
+  double rms = 0.0;
+  for (const auto& pose : frames)
+    rms += OpenMeshSkinned::surface_distance(OpenMeshSkinned::posed_soup(original, pose),
+                                             OpenMeshSkinned::posed_soup(lod, pose), 20000)
+               .rms;
+  return 100.0 * rms / std::max<size_t>(1, frames.size()) / OpenMeshSkinned::bbox_diagonal(original);
+}
+
+bool g_heldout = true;
+bool g_lazy_only = false;
+int g_threads = 2;
+
+// Each workload is decimated by OpenMesh's DecimaterT and by LazyDecimaterT (one thread, then
+// g_threads), with the static and the skinned modules, in the same process.
 json run_workload(const std::string& name, const Mesh& input, size_t target, OpenMeshSkinned::CapStrategy strategy) {
-  const double static_s = time_static(input, target);
-  Mesh mesh = input;
-  json counts;
-  const double skinned_s = seconds([&] { counts = decimate_skinned(mesh, target, 4, strategy); });
+  if (g_lazy_only) {  // for profiling the lazy driver alone
+    Mesh lazy = input;
+    json counts;
+    const double s = seconds([&] { counts = decimate_skinned<Lazy>(lazy, target, 4, strategy, g_threads); });
+    return {{"workload", name}, {"skinned_lazy_s", s}, {"triangles_out_lazy", live_faces(lazy)}, {"counts", counts}};
+  }
+  const double static_s = time_static<Classic>(input, target);
+  const double static_lazy_s = time_static<Lazy>(input, target);
+  Mesh classic = input, lazy = input, lazy_n = input;
+  json counts, lazy_counts;
+  const double skinned_s = seconds([&] { counts = decimate_skinned<Classic>(classic, target, 4, strategy); });
+  const double lazy_s = seconds([&] { lazy_counts = decimate_skinned<Lazy>(lazy, target, 4, strategy, 1); });
+  const double lazy_n_s = seconds([&] { decimate_skinned<Lazy>(lazy_n, target, 4, strategy, g_threads); });
   json j = {{"workload", name},
             {"triangles_in", input.n_faces()},
-            {"triangles_out", live_faces(mesh)},
+            {"triangles_out", live_faces(classic)},
+            {"triangles_out_lazy", live_faces(lazy)},
             {"target", target},
             {"poses", OpenMeshSkinned::example_poses(input).size()},
             {"static_s", static_s},
+            {"static_lazy_s", static_lazy_s},
             {"skinned_s", skinned_s},
-            {"ratio", skinned_s / static_s}};
+            {"skinned_lazy_s", lazy_s},
+            {"skinned_lazy_threads", g_threads},
+            {"skinned_lazy_threads_s", lazy_n_s},
+            {"ratio", skinned_s / static_s},
+            {"ratio_lazy", lazy_s / static_s}};
   j.update(counts);
+  j["lazy_solves"] = lazy_counts["solves"];
+  j["lazy_cache_hits"] = lazy_counts["cache_hits"];
+  j["lazy_forced_flips"] = lazy_counts["forced_flips"];
+  if (g_heldout) {
+    j["heldout_rms_decimatert"] = heldout_rms(input, classic);
+    j["heldout_rms_lazy"] = heldout_rms(input, lazy);
+  }
   j["peak_rss_mb"] = peak_rss_mb();
   return j;
 }
@@ -138,7 +193,7 @@ json cap_strategy(const std::string& file, int cap, OpenMeshSkinned::CapStrategy
   OpenMeshSkinned::example_poses(original) =
       OpenMeshSkinned::poses_at(OpenMeshSkinned::skeleton(original), clips, sched.examples);
   Mesh mesh = original;
-  const double secs = seconds([&] { decimate_skinned(mesh, original.n_faces() / 4, cap, st); });
+  const double secs = seconds([&] { decimate_skinned<Lazy>(mesh, original.n_faces() / 4, cap, st); });
   mesh.garbage_collection();
   const auto frames = OpenMeshSkinned::poses_at(OpenMeshSkinned::skeleton(original), clips, sched.held_out);
   double rms = 0.0;
@@ -167,7 +222,18 @@ int main(int argc, char** argv) {
   app.add_flag("--all", all, "Every workload");
   app.add_option("--strategy", strategy, "Weight-cap strategy: topn (default) or greedy");
   app.add_option("--models", models_dir, "Folder of assimp's test models");
+  app.add_option("--threads", g_threads, "Threads of the second LazyDecimaterT run (default 2)");
+  app.add_flag("!--no-heldout", g_heldout, "Skip the held-out error of the skinned LODs");
+  app.add_flag("--lazy-only", g_lazy_only, "Only the skinned modules under LazyDecimaterT on --threads (profiling)");
+  std::string write_human;
+  app.add_option("--write-human", write_human,
+                 "Write the human workload's mesh (Testwuson subdivided three times, with its clips) as a GLB and "
+                 "exit: the large input of bench/cli-vs-gltfpack.sh");
   CLI11_PARSE(app, argc, argv);
+  if (!write_human.empty()) {
+    OpenMeshSkinned::export_gltf(human(), write_human);
+    return 0;
+  }
   if (!all && workload.empty()) {
     std::cerr << "omsk-bench: give --workload NAME or --all\n";
     return 2;
