@@ -98,13 +98,18 @@ bool WeightSolver::solve_kkt(const Mat& H, const Vec& start, double mu, const Ma
   // Stationarity of a^T (H + mu I) a - 2 mu a0^T a with multiplier l for sum(a) = 1:
   //   [ 2(H + mu I)  1 ] [a]   [ 2 mu a0 ]
   //   [     1^T      0 ] [l] = [    1    ]
+  // Scaled so that the H block is of order 1 next to the constraint's ones (the answer a does not change,
+  // only the multiplier): Gram matrices of 1e9 and more otherwise make the system numerically singular.
+  double diag = mu;
+  for (int i = 0; i < r; ++i) diag += std::abs(H(idx[i], idx[i])) / r;
+  const double s = 2.0 / diag;
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMax + 1, kMax + 1> K(r + 1, r + 1);
   Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMax + 1, 1> rhs(r + 1);
   for (int i = 0; i < r; ++i) {
-    for (int j = 0; j < r; ++j) K(i, j) = 2.0 * H(idx[i], idx[j]);
-    K(i, i) += 2.0 * mu;
+    for (int j = 0; j < r; ++j) K(i, j) = s * H(idx[i], idx[j]);
+    K(i, i) += s * mu;
     K(i, r) = K(r, i) = 1.0;
-    rhs[i] = 2.0 * mu * start[idx[i]];
+    rhs[i] = s * mu * start[idx[i]];
   }
   K(r, r) = 0.0;
   rhs[r] = 1.0;
