@@ -31,7 +31,7 @@ using namespace detail;
 const aiScene* read_scene(Assimp::Importer& importer, const std::string& path, const std::string& read_path) {
   // No PreTransformVertices or OptimizeGraph: both would destroy the skeleton we need.
   const unsigned flags =
-      aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
+      aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
   const aiScene* scene = importer.ReadFile(read_path, flags);
   if (!scene) {
     std::string msg = importer.GetErrorString();
