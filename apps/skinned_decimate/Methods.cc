@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <optional>
 #include <stdexcept>
 
 namespace skinned_decimate {
@@ -115,22 +116,23 @@ bool is_method(const std::string& name) {
   return std::any_of(methods().begin(), methods().end(), [&](const Method& m) { return name == m.name; });
 }
 
-std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vector<size_t>& targets,
+std::vector<std::pair<Lod, Mesh>> build_chain(Mesh mesh, const std::vector<size_t>& targets,
                                               const std::vector<double>& ratios, const Options& opt,
                                               const std::string& method, const std::string& label) {
   const auto it =
       std::find_if(table().begin(), table().end(), [&](const MethodModules& t) { return method == t.method.name; });
   if (it == table().end()) throw std::logic_error("unknown method " + method);
-  Mesh mesh = input;
-  Decimater dec(mesh);
+  const size_t n_vertices_in = mesh.n_vertices();
+  // Held in an optional so that the solver's caches are freed before the last snapshot is taken.
+  std::optional<Decimater> dec(std::in_place, mesh);
   Handles h;
-  it->add(dec, h);
-  dec.add(h.cap);
-  dec.module(h.cap).set_max_influences(opt.max_influences);
-  if (opt.threads > 0) dec.set_threads(opt.threads);
-  if (!dec.initialize()) throw std::runtime_error("the decimater did not initialize");
-  Progress progress(!opt.quiet && isatty(2), input.n_vertices() - targets.back() / 2, label);
-  dec.set_observer(&progress);
+  it->add(*dec, h);
+  dec->add(h.cap);
+  dec->module(h.cap).set_max_influences(opt.max_influences);
+  if (opt.threads > 0) dec->set_threads(opt.threads);
+  if (!dec->initialize()) throw std::runtime_error("the decimater did not initialize");
+  Progress progress(!opt.quiet && isatty(2), n_vertices_in - targets.back() / 2, label);
+  dec->set_observer(&progress);
 
   std::vector<std::pair<Lod, Mesh>> out;
   const auto t0 = Clock::now();
@@ -141,12 +143,15 @@ std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vect
     // vertices under the solver's feet: aim at the target plus the faces already deleted instead.
     size_t live = 0;
     for (auto fh : mesh.faces()) (void)fh, ++live;
-    collapses += dec.decimate_to_faces(0, targets[i] + (mesh.n_faces() - live));
+    collapses += dec->decimate_to_faces(0, targets[i] + (mesh.n_faces() - live));
     Lod lod;
     lod.ratio = ratios[i];
     lod.target = targets[i];
     lod.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
-    Mesh snap = mesh;
+    if (i + 1 == targets.size()) dec.reset();
+    // The last level is the working mesh itself; earlier ones are copies (with the deleted elements until
+    // garbage collection: the working mesh cannot be renumbered under the solver).
+    Mesh snap = i + 1 == targets.size() ? std::move(mesh) : mesh;
     snap.garbage_collection();
     for (auto vh : snap.vertices()) snap.status(vh).set_locked(false);
     lod.faces = snap.n_faces();
@@ -154,7 +159,6 @@ std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vect
     lod.max_influences = max_influences_of(snap);
     out.emplace_back(lod, std::move(snap));
   }
-  dec.set_observer(nullptr);
   return out;
 }
 

@@ -146,7 +146,7 @@ json run_character(const Mesh& mesh, const std::string& name, const Options& opt
   std::vector<size_t> targets;
   choose_targets(mesh, opt, ratios, targets);
   const auto t0 = Clock::now();
-  auto chain = build_chain(work, targets, ratios, opt, method, name + " (" + method + ")");
+  auto chain = build_chain(std::move(work), targets, ratios, opt, method, name + " (" + method + ")");
   const auto t1 = Clock::now();
   if (opt.evaluate) evaluate(mesh, chain, poses.heldout, opt.threads > 0 ? opt.threads : hardware_threads());
   const auto t2 = Clock::now();
