@@ -124,8 +124,13 @@ public:
     uv_.prepare();
     stale_.prepare();
     prepared_ = true;
+    solved_ahead_ = false;
   }
   bool prepared() const { return prepared_; }
+
+  /// Threads for solving all edges ahead of the first pricing (default: the hardware's; 1 = none started).
+  void set_threads(int n) { threads_ = std::max(1, n); }
+  int threads() const { return threads_; }
 
   int n_poses() const { return poses_.n_poses(); }
   const Pose& pose(int j) const { return poses_.pose(j); }
@@ -159,7 +164,9 @@ public:
    *  (BatchPricing). Each answer depends only on its edge's endpoints, so nothing depends on the thread
    *  count. Not with a module's own cost model, which need not be safe to call concurrently. */
   void solve_all_edges(int threads) {
-    if (model_ || !settings_.placement || !prepared_) return;
+    if (!prepared_) return;
+    solved_ahead_ = true;
+    if (model_ || !settings_.placement) return;
     std::vector<int> todo;
     for (auto eh : mesh_.edges()) {
       const auto h = mesh_.halfedge_handle(eh, 0);
@@ -225,8 +232,10 @@ public:
   // Under a driver that asks binary modules at pop time (checks_at_pop) verdicts are never stale and
   // the priority module is asked alone: the sweep bookkeeping, the shortcut and the deferral are off.
 
-  /// Every module calls this first in collapse_priority (SolverModuleT does).
+  /// Every module calls this first in collapse_priority (SolverModuleT does). The first call of a
+  /// decimation solves every edge ahead on threads() threads: every edge is priced first anyway.
   void begin_pricing(const CollapseInfo& ci) {
+    if (!solved_ahead_) solve_all_edges(threads_);
     if (!checks_at_pop_) stale_.begin_pricing(ci);
   }
   /// The priority module reports a collapse that every binary module accepted, with its cost.
@@ -367,6 +376,8 @@ private:
   EdgeCache cache_;
   bool prepared_ = false;
   bool checks_at_pop_ = false;
+  bool solved_ahead_ = false;
+  int threads_ = std::max(1u, std::thread::hardware_concurrency());
   bool pending_ = false;
   CollapseResult pending_result_;
   EdgeProblem problem_;  // reused: no allocation per solve once grown
