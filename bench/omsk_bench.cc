@@ -52,8 +52,16 @@ size_t live_faces(const Mesh& m) {
 using Classic = OpenMesh::Decimater::DecimaterT<Mesh>;
 using Lazy = OpenMeshSkinned::LazyDecimaterT<Mesh>;
 
-void set_threads(Classic&, int) {}
-void set_threads(Lazy& dec, int n) { dec.set_threads(n); }
+void set_threads(Classic& dec, int n, OpenMeshSkinned::CollapseSolverT<Mesh>& solver) {
+  (void)dec;
+  solver.set_threads(n);
+}
+void set_threads(Lazy& dec, int n, OpenMeshSkinned::CollapseSolverT<Mesh>&) { dec.set_threads(n); }
+json driver_counts(const Classic&) { return json::object(); }
+json driver_counts(const Lazy& dec) {
+  const auto& s = dec.stats();
+  return {{"priced", s.priced}, {"stale_pops", s.stale}, {"refused_pops", s.refused}, {"collapses", s.collapses}};
+}
 
 // The reference: OpenMesh's own static modules. Returns seconds (the mesh copy is not timed).
 template <typename Decimater>
@@ -82,16 +90,18 @@ json decimate_skinned(Mesh& mesh, size_t target, int cap, OpenMeshSkinned::CapSt
   dec.add(hf);
   dec.module(hc).set_max_influences(cap);
   dec.module(hc).set_strategy(strategy);
-  set_threads(dec, threads);
+  set_threads(dec, threads, dec.module(hq).solver());
   dec.initialize();
   dec.decimate_to_faces(0, target);
   const auto& st = dec.module(hq).solver().stats();
-  return {{"solves", st.solves},
-          {"cache_hits", st.cache_hits},
-          {"ceres_calls", st.weights.ceres_calls},
-          {"weight_solves", st.weights.solves},
-          {"deferred", st.deferred},
-          {"forced_flips", st.forced_flips}};
+  json j = {{"solves", st.solves},
+            {"cache_hits", st.cache_hits},
+            {"ceres_calls", st.weights.ceres_calls},
+            {"weight_solves", st.weights.solves},
+            {"deferred", st.deferred},
+            {"forced_flips", st.forced_flips}};
+  j.update(driver_counts(dec));
+  return j;
 }
 
 // Mean held-out RMS (% of the diagonal) of a LOD, in frames of the clips between the example poses.

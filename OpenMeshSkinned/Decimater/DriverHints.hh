@@ -43,4 +43,13 @@ public:
   virtual void price_all_edges(int threads) = 0;
 };
 
+/** A priority module whose price of a collapse depends only on its two endpoints (their positions and
+ *  whatever the module keeps per vertex), not on the faces around them: a driver then needs to re-price
+ *  only the collapses touching the vertex a collapse changed, not those of its whole ring. Binary
+ *  modules are not concerned (LazyDecimaterT asks them right before each collapse). */
+class EndpointPriority {
+public:
+  virtual ~EndpointPriority() = default;
+};
+
 }  // namespace OpenMeshSkinned

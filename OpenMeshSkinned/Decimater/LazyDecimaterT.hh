@@ -29,7 +29,8 @@ struct LazyDecimaterStats {
  *  keeps a heap of halfedge candidates priced by the priority module alone, each with a version stamp of
  *  its endpoints' neighbourhoods:
  *  - after a collapse it only bumps the stamps of the surviving vertex and its ring (the vertices whose
- *    faces changed) and re-queues their candidates that had left the heap;
+ *    faces changed; v1 alone when the priority module is an EndpointPriority) and re-queues their
+ *    candidates that had left the heap;
  *  - a popped candidate whose stamp is out of date is re-priced and pushed back; with priorities that
  *    only grow as quadrics accumulate (ModQuadricT, the skinned quadric) its old key is a lower bound,
  *    so nothing is taken out of order;
@@ -91,6 +92,7 @@ public:
         if (m->name() == "Quadric") priority_ = m;
     for (Module* m : modules_)
       if (m != priority_) binary_.push_back(m);
+    endpoint_priority_ = priority_ && dynamic_cast<EndpointPriority*>(priority_) != nullptr;
     return priority_ != nullptr;
   }
 
@@ -199,12 +201,14 @@ private:
   }
 
   // v1 and its ring now have other faces (v0's, or v1 moved): their candidates' keys and verdicts may be
-  // out of date. Stamp them; candidates that had left the heap (refused, or illegal then) come back with
+  // out of date. Stamp them (only v1 when the priority module prices by the endpoints alone: verdicts are
+  // asked at pop time anyway); candidates that had left the heap (refused, or illegal then) come back with
   // their last key (a lower bound when priorities only grow; 0 if never priced) and are re-priced when popped.
   void touch_around(VertexHandle v1, bool only_selected) {
     ++clock_;
     stamp_[v1.idx()] = clock_;
-    for (auto v : mesh_.vv_range(v1)) stamp_[v.idx()] = clock_;
+    if (!endpoint_priority_)
+      for (auto v : mesh_.vv_range(v1)) stamp_[v.idx()] = clock_;
     auto requeue = [&](HalfedgeHandle h) {
       if (!queued_[h.idx()] && eligible(h, only_selected)) {
         heap_.push({last_key_[h.idx()], h.idx(), 0});
@@ -219,6 +223,7 @@ private:
   Mesh& mesh_;
   std::vector<Module*> modules_, binary_;
   Module* priority_ = nullptr;
+  bool endpoint_priority_ = false;  // the priority module says only v1's collapses change price
   int threads_ = std::max(1u, std::thread::hardware_concurrency());
   std::priority_queue<Candidate> heap_;
   std::vector<uint32_t> stamp_;

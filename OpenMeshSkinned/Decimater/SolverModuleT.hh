@@ -24,7 +24,10 @@
 namespace OpenMeshSkinned {
 
 template <typename MeshT>
-class SolverModuleT : public OpenMesh::Decimater::ModBaseT<MeshT>, protected SolverClientT<MeshT>, public BatchPricing {
+class SolverModuleT : public OpenMesh::Decimater::ModBaseT<MeshT>,
+                      protected SolverClientT<MeshT>,
+                      public BatchPricing,
+                      public EndpointPriority {
   using ModBase = OpenMesh::Decimater::ModBaseT<MeshT>;
 
 public:
