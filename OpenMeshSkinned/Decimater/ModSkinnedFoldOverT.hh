@@ -20,6 +20,8 @@ namespace OpenMeshSkinned {
  *  status "locked" on those that would now fold, until the decimater re-prices them (it skips locked v0s).
  *  These locks are released when the modules are destroyed or by release_deferred(); vertices the user
  *  locked are never touched. What still slips through is counted in solver().stats().forced_flips.
+ *  Under LazyDecimaterT, which asks binary modules right before each collapse, none of this is needed
+ *  and none of it happens.
  *
  *  \code
  *  OpenMeshSkinned::ModSkinnedFoldOverT<Mesh>::Handle hf;

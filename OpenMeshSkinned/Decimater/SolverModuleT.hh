@@ -13,6 +13,8 @@
  *     modules first: the first call does the shared work, the others see it done.
  *  4. After a collapse DecimaterT re-prices only v0's former neighbours; it skips locked vertices when it
  *     pops and prices them (the deferral of StaleVerdictsT.hh).
+ *  Under LazyDecimaterT (checks_at_pop(), DriverHints.hh) only 3 holds: binary modules are asked right
+ *  before each collapse, the priority module alone when pricing, and the solver drops 1, 2 and 4.
  */
 
 #include "OpenMeshSkinned/Solver/CollapseSolverT.hh"
