@@ -30,8 +30,7 @@ using namespace detail;
 // assimp's reading, its error made one line of a readable length: a reader may quote half the file back.
 const aiScene* read_scene(Assimp::Importer& importer, const std::string& path, const std::string& read_path) {
   // No PreTransformVertices or OptimizeGraph: both would destroy the skeleton we need.
-  const unsigned flags =
-      aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
+  const unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
   const aiScene* scene = importer.ReadFile(read_path, flags);
   if (!scene) {
     std::string msg = importer.GetErrorString();
