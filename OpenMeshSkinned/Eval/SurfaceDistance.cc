@@ -80,6 +80,20 @@ MeasuredSurface::MeasuredSurface(const TriangleSoup& soup, size_t n, uint64_t se
   impl_->tree->accelerate_distance_queries();
 }
 MeasuredSurface::~MeasuredSurface() = default;
+
+double MeasuredSurface::distance(const Eigen::Vector3d& p) const {
+  if (!impl_->tree) return HUGE_VAL;
+  return std::sqrt(impl_->tree->squared_distance(Point(p.x(), p.y(), p.z())));
+}
+
+double MeasuredSurface::distance(const Eigen::Vector3d& p, int& triangle) const {
+  triangle = -1;
+  if (!impl_->tree) return HUGE_VAL;
+  const Point q(p.x(), p.y(), p.z());
+  const auto [nearest, it] = impl_->tree->closest_point_and_primitive(q);
+  triangle = static_cast<int>(it - impl_->triangles.begin());
+  return std::sqrt(CGAL::squared_distance(q, nearest));
+}
 MeasuredSurface::MeasuredSurface(MeasuredSurface&&) noexcept = default;
 MeasuredSurface& MeasuredSurface::operator=(MeasuredSurface&&) noexcept = default;
 

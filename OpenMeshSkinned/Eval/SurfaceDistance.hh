@@ -38,6 +38,11 @@ public:
   MeasuredSurface(MeasuredSurface&&) noexcept;
   MeasuredSurface& operator=(MeasuredSurface&&) noexcept;
 
+  /// Distance from \p p to the nearest point of the surface (infinity for a surface without triangles).
+  double distance(const Eigen::Vector3d& p) const;
+  /// As distance(), and the index (in the soup) of the triangle that nearest point lies on (-1 when none).
+  double distance(const Eigen::Vector3d& p, int& triangle) const;
+
   struct Impl;
   const Impl& impl() const { return *impl_; }
 

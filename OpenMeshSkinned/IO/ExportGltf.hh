@@ -13,6 +13,10 @@
 
 namespace OpenMeshSkinned {
 
+/** Named float vertex property the exporter writes as the application-specific attribute "_ERROR" when the
+ *  mesh has it (the report page colours vertices by it); the LOD files the tool writes do not carry it. */
+inline constexpr const char* kVertexErrorProperty = "v:omsk_error";
+
 /** Writes \p mesh to \p path: binary .glb, or .gltf with the buffers embedded so the file stands alone.
  *  The file appears complete or not at all (written beside the target, then renamed).
  *  Throws IOError when the extension is neither, the folder is not writable, or the skin is invalid. */

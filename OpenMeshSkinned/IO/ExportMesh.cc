@@ -1,5 +1,6 @@
 #include "OpenMeshSkinned/IO/ExportParts.hh"
 
+#include "OpenMeshSkinned/IO/ExportGltf.hh"
 #include "OpenMeshSkinned/IO/IOError.hh"
 #include "OpenMeshSkinned/Skin/Morph.hh"
 #include "OpenMeshSkinned/Skin/SkinProperties.hh"
@@ -101,6 +102,9 @@ tinygltf::Mesh write_mesh(const SkinnedMesh& mesh, BufferWriter& buf, const std:
     return false;
   }();
 
+  OpenMesh::VPropHandleT<float> h_error;
+  const bool has_error = mesh.get_property_handle(h_error, kVertexErrorProperty);
+
   OpenMesh::VPropHandleT<MorphDeltas> h_delta;
   const size_t n_targets = morph_deltas_handle(mesh, h_delta) ? morph_targets(mesh).size() : 0;
 
@@ -109,7 +113,7 @@ tinygltf::Mesh write_mesh(const SkinnedMesh& mesh, BufferWriter& buf, const std:
   for (const auto& [mat, faces] : by_material) {
     std::vector<std::vector<float>> deltas(n_targets);
     std::map<Corner, uint32_t> index_of;
-    std::vector<float> pos, nrm, uv;
+    std::vector<float> pos, nrm, uv, err;
     std::vector<uint16_t> joints;
     std::vector<float> weights;
     std::vector<uint32_t> indices;
@@ -143,6 +147,7 @@ tinygltf::Mesh write_mesh(const SkinnedMesh& mesh, BufferWriter& buf, const std:
             mn[k] = std::min<double>(mn[k], f);
             mx[k] = std::max<double>(mx[k], f);
           }
+          if (has_error) err.push_back(mesh.property(h_error, vh));
           nrm.insert(nrm.end(), c.n.begin(), c.n.end());
           uv.insert(uv.end(), c.uv.begin(), c.uv.end());
           float_weights(mesh.property(h_inf, vh), slots, joints, weights);
@@ -162,6 +167,9 @@ tinygltf::Mesh write_mesh(const SkinnedMesh& mesh, BufferWriter& buf, const std:
     if (has_uv)
       prim.attributes["TEXCOORD_0"] =
           buf.add(uv, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, nv, TINYGLTF_TARGET_ARRAY_BUFFER);
+    if (has_error)
+      prim.attributes["_ERROR"] =
+          buf.add(err, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, nv, TINYGLTF_TARGET_ARRAY_BUFFER);
     for (int set = 0; set < slots / 4; ++set) {
       std::vector<uint16_t> js;
       std::vector<float> ws;
