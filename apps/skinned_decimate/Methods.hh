@@ -30,6 +30,7 @@ struct Lod {
   int max_influences = 0;
   bool evaluated = false;             // false with --no-eval
   double rms = 0.0, hausdorff = 0.0;  // % of the rest-pose bounding-box diagonal
+  std::vector<float> vertex_error;    // per vertex, max over held-out frames, % of the diagonal (--html)
   std::string file;
 };
 

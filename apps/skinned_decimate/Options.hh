@@ -29,6 +29,8 @@ struct Options {
   double time_limit = 300.0;
   int threads = 0;  // 0: the hardware's
   bool evaluate = true;
+  std::string html, preview;  // --html page, --preview PNG
+  bool html_beside = false;   // --html-assets beside: the GLBs in a script next to the page
 };
 
 // Past this many example poses the schedule stops being a sample of the clips and becomes the clips.

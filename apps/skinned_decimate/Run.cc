@@ -1,5 +1,6 @@
 #include "Run.hh"
 
+#include "Html.hh"
 #include "Methods.hh"
 #include "Report.hh"
 
@@ -9,6 +10,8 @@
 #include <OpenMeshSkinned/IO/OutputSet.hh>
 #include <OpenMeshSkinned/Mesh/Procedural.hh>
 #include <OpenMeshSkinned/Skin/PoseSchedule.hh>
+
+#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -86,24 +89,47 @@ void choose_targets(const Mesh& mesh, const Options& opt, std::vector<double>& r
   if (opt.faces && opt.lods.empty()) targets = {opt.faces};
 }
 
+// Per LOD vertex, in % of the diagonal: its distance to the original surface, and the distance to the LOD of
+// every original vertex whose nearest LOD point lies on one of its triangles (a LOD whose vertices all sit
+// on the original can still cut through it between them: a collapsed knee).
+std::vector<float> vertex_errors(const TriangleSoup& original, const MeasuredSurface& original_surface,
+                                 const TriangleSoup& lod, const MeasuredSurface& lod_surface, double diag) {
+  std::vector<float> e(lod.points.size(), 0.0f);
+  for (size_t v = 0; v < lod.points.size(); ++v) e[v] = float(original_surface.distance(lod.points[v]));
+  for (const auto& p : original.points) {
+    int t = -1;
+    const float d = float(lod_surface.distance(p, t));
+    if (t >= 0)
+      for (int k : lod.triangles[t]) e[k] = std::max(e[k], d);
+  }
+  for (float& x : e) x = float(100.0 * x / diag);
+  return e;
+}
+
 // Frame by frame, threads taking frames in turn: the posed original's surface (tree and samples) is built
 // once per frame and measured against every LOD; sums are taken in frame order, so the numbers do not
 // depend on the thread count.
 void evaluate(const Mesh& original, std::vector<std::pair<Lod, Mesh>>& chain, const std::vector<Pose>& frames,
-              int threads) {
+              int threads, bool per_vertex) {
   const double diag = bbox_diagonal(original);
   const size_t n_lods = chain.size();
   std::vector<SurfaceDistance> d(frames.size() * n_lods);
+  // --html: each LOD vertex's distance to the posed original, per frame (the max is taken below).
+  std::vector<std::vector<float>> vd(per_vertex ? frames.size() * n_lods : 0);
   std::atomic<size_t> next{0};
   std::exception_ptr failure;
   std::mutex failure_lock;
   auto work = [&] {
     try {
       for (size_t f = next++; f < frames.size(); f = next++) {
-        const MeasuredSurface posed(posed_soup(original, frames[f]), kEvalSamples, 1);
-        for (size_t i = 0; i < n_lods; ++i)
-          d[f * n_lods + i] = surface_distance(
-              posed, MeasuredSurface(posed_soup(chain[i].second, frames[f]), kEvalSamples, 0x9E3779B97F4A7C16ull));
+        const TriangleSoup original_soup = posed_soup(original, frames[f]);
+        const MeasuredSurface posed(original_soup, kEvalSamples, 1);
+        for (size_t i = 0; i < n_lods; ++i) {
+          const TriangleSoup lod = posed_soup(chain[i].second, frames[f]);
+          const MeasuredSurface lod_surface(lod, kEvalSamples, 0x9E3779B97F4A7C16ull);
+          d[f * n_lods + i] = surface_distance(posed, lod_surface);
+          if (per_vertex) vd[f * n_lods + i] = vertex_errors(original_soup, posed, lod, lod_surface, diag);
+        }
       }
     } catch (...) {
       std::lock_guard<std::mutex> g(failure_lock);
@@ -126,6 +152,11 @@ void evaluate(const Mesh& original, std::vector<std::pair<Lod, Mesh>>& chain, co
     lod.evaluated = true;
     lod.rms = 100.0 * sum_rms / frames.size() / diag;
     lod.hausdorff = 100.0 * max_h / diag;
+    if (!per_vertex) continue;
+    lod.vertex_error.assign(chain[i].second.n_vertices(), 0.0f);
+    for (size_t f = 0; f < frames.size(); ++f)
+      for (size_t v = 0; v < lod.vertex_error.size(); ++v)
+        lod.vertex_error[v] = std::max(lod.vertex_error[v], vd[f * n_lods + i][v]);
   }
 }
 
@@ -135,10 +166,28 @@ std::string lod_path(const std::string& output, size_t i, size_t n) {
   return (p.parent_path() / (p.stem().string() + "_lod" + std::to_string(i + 1) + p.extension().string())).string();
 }
 
+// The page's section for a character: its clips, and up to four of its held-out frames, spread over all of
+// them, for the contact sheet.
+HtmlSection new_section(const std::string& title, const Mesh& mesh, const PoseSchedule& schedule) {
+  HtmlSection s;
+  s.title = title;
+  const auto& all = clips(mesh);
+  for (const Clip& c : all) s.clips.push_back({{"name", c.name}, {"duration", c.duration}});
+  const auto& held = schedule.held_out;
+  const size_t n = std::min<size_t>(4, held.size());
+  for (size_t i = 0; i < n; ++i) {
+    const PoseTime& t = held[i * held.size() / n];
+    s.preview.push_back({{"clip", all[t.clip].name}, {"time", t.time}});
+  }
+  return s;
+}
+
 // Runs one character through one method: poses, targets, the chain, its error, the table, the files
-// (staged in \p outputs; none when it is null). Returns the report entry.
+// (staged in \p outputs; none when it is null), the page's views (when \p html is not null: the original
+// first if the section is new). Returns the report entry.
 json run_character(const Mesh& mesh, const std::string& name, const Options& opt, const std::string& method,
-                   const std::string& output, OutputSet* outputs) {
+                   const std::string& output, OutputSet* outputs, std::vector<HtmlSection>* html = nullptr,
+                   const std::string& section_title = "") {
   const Poses poses = choose_poses(mesh, name, opt);
   Mesh work = mesh;
   example_poses(work) = poses.examples;
@@ -148,7 +197,8 @@ json run_character(const Mesh& mesh, const std::string& name, const Options& opt
   const auto t0 = Clock::now();
   auto chain = build_chain(std::move(work), targets, ratios, opt, method, name + " (" + method + ")");
   const auto t1 = Clock::now();
-  if (opt.evaluate) evaluate(mesh, chain, poses.heldout, opt.threads > 0 ? opt.threads : hardware_threads());
+  const bool want_html = html != nullptr;
+  if (opt.evaluate) evaluate(mesh, chain, poses.heldout, opt.threads > 0 ? opt.threads : hardware_threads(), want_html);
   const auto t2 = Clock::now();
   const bool animated = !clips(mesh).empty();
   print_table(name + " — " + method + (animated ? "" : ", rest pose only") + ", " + std::to_string(mesh.n_faces()) +
@@ -165,6 +215,14 @@ json run_character(const Mesh& mesh, const std::string& name, const Options& opt
   }
   if (outputs)
     for (const auto& [lod, m] : chain) std::cout << "  wrote " << lod.file << "\n";
+  if (want_html) {
+    if (html->empty() || html->back().title != section_title) {
+      html->push_back(new_section(section_title, mesh, poses.schedule));
+      add_view(html->back(), "original", mesh, nullptr, {});
+    }
+    for (const auto& [lod, lmesh] : chain)
+      add_view(html->back(), method + " " + fmt(100.0 * lod.ratio, 1) + "%", lmesh, &lod, lod.vertex_error);
+  }
   return {{"input", name},
           {"method", method},
           {"triangles_in", mesh.n_faces()},
@@ -174,19 +232,53 @@ json run_character(const Mesh& mesh, const std::string& name, const Options& opt
           {"lods", lods}};
 }
 
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream f(path, std::ios::binary);
+  f << text;
+  f.close();
+  if (!f) throw IOError(path + ": cannot be written");
+}
+
+// --html-assets beside: PAGE.assets.js next to PAGE.html.
+std::string assets_path(const std::string& html) {
+  const fs::path p(html);
+  return (p.parent_path() / (p.stem().string() + ".assets.js")).string();
+}
+
 // Every file this run will write, planned before any work so that a clash costs nothing.
 void plan_outputs(const Options& opt, const std::vector<std::string>& names, OutputSet& outputs) {
   const size_t n = std::max<size_t>(1, opt.lods.size());
   for (const std::string& name : names)
     for (size_t i = 0; i < n; ++i) outputs.add(lod_path(name, i, n));
   if (!opt.report.empty()) outputs.add(opt.report);
+  if (!opt.html.empty()) {
+    outputs.add(opt.html);
+    if (opt.html_beside) outputs.add(assets_path(opt.html));
+  }
+  if (!opt.preview.empty()) outputs.add(opt.preview);
 }
 
-void write_text(const std::string& path, const std::string& text) {
-  std::ofstream f(path, std::ios::binary);
-  f << text;
-  f.close();
-  if (!f) throw IOError(path + ": cannot be written");
+// The page (--html, its assets script beside it with --html-assets beside) and the contact sheet
+// (--preview, rendered from an embedded copy of the page in a temporary folder), staged in \p outputs.
+void write_page(const Options& opt, const std::string& title, const std::vector<HtmlSection>& sections,
+                OutputSet& outputs) {
+  if (!opt.html.empty()) {
+    std::string assets;
+    write_text(outputs.staging(opt.html), html_page(title, sections, opt.html_beside,
+                                                    fs::path(assets_path(opt.html)).filename().string(), &assets));
+    if (opt.html_beside) write_text(outputs.staging(assets_path(opt.html)), assets);
+  }
+  if (!opt.preview.empty()) {
+    const fs::path page = fs::temp_directory_path() / ("omsk-preview-" + std::to_string(::getpid()) + ".html");
+    write_text(page.string(), html_page(title, sections, false, "", nullptr));
+    try {
+      render_preview(page.string(), outputs.staging(opt.preview));
+    } catch (...) {
+      fs::remove(page);
+      throw;
+    }
+    fs::remove(page);
+  }
 }
 
 void check_arguments(const Options& opt) {
@@ -223,16 +315,22 @@ int run_builtin(const Options& opt) {
   json runs = json::array();
   const std::pair<std::string, Mesh> characters[] = {{"leg", make_bending_cylinder(32, 64)},
                                                      {"column", make_square_column()}};
+  const bool page = !opt.html.empty() || !opt.preview.empty();
+  std::vector<HtmlSection> sections;
   for (const auto& [name, mesh] : characters) {
     o.poses = name == "leg" ? 2 : 4;  // the papers' example poses: knee at 0 and 90; the column's four bends
     o.pose_clip = "";
-    runs.push_back(run_character(mesh, name, o, "skinned", (fs::path(dir) / (name + ".glb")).string(), &outputs));
-    runs.push_back(run_character(mesh, name, o, "static", "", nullptr));
+    runs.push_back(run_character(mesh, name, o, "skinned", (fs::path(dir) / (name + ".glb")).string(), &outputs,
+                                 page ? &sections : nullptr, name));
+    runs.push_back(run_character(mesh, name, o, "static", "", nullptr, page ? &sections : nullptr, name));
     std::cout << "\n";
   }
   const json report = {{"input", "built-in"}, {"runs", runs}};
   if (!opt.report.empty()) write_text(outputs.staging(opt.report), report.dump(2) + "\n");
+  if (page) write_page(opt, "skinned-decimate: the papers' characters", sections, outputs);
   outputs.commit();
+  if (!opt.html.empty()) std::cout << "page: " << opt.html << "\n";
+  if (!opt.preview.empty()) std::cout << "preview: " << opt.preview << "\n";
   std::cout << "Static = OpenMesh's rest-pose quadric with endpoint weights; skinned = this library. The error\n"
                "columns are measured in frames the decimater never saw.\n";
   return 0;
@@ -270,17 +368,22 @@ int run(const Options& opt) {
   Options o = opt;
   if (o.lods.empty() && o.faces == 0 && !o.ratio_given) o.ratio = 0.5;
   json report;
+  const bool page = !opt.html.empty() || !opt.preview.empty();
+  std::vector<HtmlSection> sections;
+  const std::string title = fs::path(opt.input).filename().string();
   if (o.compare) {
     json runs = json::array();
     for (const Method& m : methods()) {
-      runs.push_back(run_character(mesh, opt.input, o, m.name, opt.output, m.name == opt.method ? &outputs : nullptr));
+      runs.push_back(run_character(mesh, opt.input, o, m.name, opt.output, m.name == opt.method ? &outputs : nullptr,
+                                   page ? &sections : nullptr, title));
       std::cout << "\n";
     }
     print_comparison(runs);
     report = {{"input", opt.input}, {"runs", runs}};
   } else {
-    report = run_character(mesh, opt.input, o, opt.method, opt.output, &outputs);
+    report = run_character(mesh, opt.input, o, opt.method, opt.output, &outputs, page ? &sections : nullptr, title);
   }
+  if (page) write_page(opt, "skinned-decimate: " + title, sections, outputs);
   report["import_seconds"] = import_s;
   if (!opt.report.empty()) write_text(outputs.staging(opt.report), report.dump(2) + "\n");
   outputs.commit();

@@ -56,6 +56,15 @@ int main(int argc, char** argv) {
   app.add_option("--time-limit", opt.time_limit, "Seconds the input's reader may take (default 300; 0 = none)");
   app.add_option("--threads", opt.threads, "Threads for solving edges and measuring error (default: all cores)")
       ->check(CLI::Range(1, 256));
+  app.add_option("--html", opt.html,
+                 "Write a self-contained page playing the original and every LOD side by side, with the held-out "
+                 "error per vertex as colours");
+  std::string assets = "embed";
+  app.add_option("--html-assets", assets, "embed (default: the GLBs inside the page) or beside (in PAGE.assets.js)")
+      ->check(CLI::IsMember({"embed", "beside"}));
+  app.add_option("--preview", opt.preview,
+                 "Write a PNG contact sheet of the page (rows: original and LODs; columns: held-out frames), "
+                 "rendered by headless Chromium");
   app.add_flag("!--no-eval", opt.evaluate,
                "Skip measuring the error in held-out frames (batch use: the table shows triangles and time only)");
   try {
@@ -66,6 +75,7 @@ int main(int argc, char** argv) {
     std::cerr << "skinned-decimate: " << e.what() << "\n";
     return 2;
   }
+  opt.html_beside = assets == "beside";
   opt.poses_given = app.count("--poses") > 0;
   opt.ratio_given = app.count("--ratio") > 0;
   opt.faces_given = app.count("--faces") > 0;
