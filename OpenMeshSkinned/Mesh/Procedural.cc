@@ -169,4 +169,20 @@ SkinnedMesh make_square_column(int around, int along) {
   return mesh;
 }
 
+void diffuse_skin_weights(SkinnedMesh& mesh, int steps, int max_influences) {
+  const auto h = influences_handle(mesh);
+  std::vector<Influences> next(mesh.n_vertices());
+  for (int step = 0; step < steps; ++step) {
+    for (auto vh : mesh.vertices()) {
+      InfluenceSum sum;
+      sum.add(mesh.property(h, vh), 0.5);
+      const double n = static_cast<double>(mesh.valence(vh));
+      for (auto nb : mesh.vv_range(vh)) sum.add(mesh.property(h, nb), 0.5 / n);
+      if (n == 0) sum.add(mesh.property(h, vh), 0.5);
+      next[vh.idx()] = sum.keep_heaviest(max_influences);
+    }
+    for (auto vh : mesh.vertices()) mesh.property(h, vh) = next[vh.idx()];
+  }
+}
+
 }  // namespace OpenMeshSkinned

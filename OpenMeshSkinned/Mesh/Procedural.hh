@@ -32,4 +32,10 @@ SkinnedMesh make_bending_cylinder(int around = 32, int along = 64);
  *  one clip "sway" (3 s) that passes through them at 0, 1, 2 and 3 s. */
 SkinnedMesh make_square_column(int around = 128, int along = 448);
 
+/** Spreads a character's skin over more bones, to make many-influence test characters out of real ones
+ *  (e.g. Testwuson, 4 bones a vertex, into an 8-bone one): \p steps rounds of Laplacian smoothing of the
+ *  weight field, each vertex's weights becoming half its own and half its neighbours' average; after each
+ *  round the heaviest \p max_influences (<= Influences::kCapacity) are kept and renormalised. */
+void diffuse_skin_weights(SkinnedMesh& mesh, int steps, int max_influences);
+
 }  // namespace OpenMeshSkinned
