@@ -6,7 +6,7 @@
 #   bench/cli-vs-gltfpack.sh [RATIO] [RUNS]      (defaults 0.01 and 3; needs scripts/build and scripts/setup)
 #
 # The input is the human workload of omsk-bench (Testwuson Loop-subdivided three times, 238,848
-# triangles, its three clips), written by `omsk-bench --write-human`.
+# triangles, its three clips), written by `omsk-bench --write human FILE`.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ratio=${1:-0.01}
@@ -20,7 +20,7 @@ done
 [ -x /usr/bin/time ] || { echo "cli-vs-gltfpack: GNU time (/usr/bin/time) is missing: apt-get install time" >&2; exit 1; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-"$bench" --write-human "$work/human.glb"
+"$bench" --write human "$work/human.glb"
 
 # Runs a command RUNS times; prints "median_seconds peak_kb" (peak: the largest over the runs).
 measure() {

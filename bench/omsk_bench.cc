@@ -235,13 +235,35 @@ int main(int argc, char** argv) {
   app.add_option("--threads", g_threads, "Threads of the second LazyDecimaterT run (default 2)");
   app.add_flag("!--no-heldout", g_heldout, "Skip the held-out error of the skinned LODs");
   app.add_flag("--lazy-only", g_lazy_only, "Only the skinned modules under LazyDecimaterT on --threads (profiling)");
-  std::string write_human;
-  app.add_option("--write-human", write_human,
-                 "Write the human workload's mesh (Testwuson subdivided three times, with its clips) as a GLB and "
-                 "exit: the large input of bench/cli-vs-gltfpack.sh");
+  std::vector<std::string> write;
+  app.add_option("--write", write,
+                 "NAME FILE: write a benchmark character as GLB and exit. human (Testwuson subdivided three "
+                 "times), leg, column, wuson8 (Testwuson with its skin diffused over 8 bones)")
+      ->expected(2);
   CLI11_PARSE(app, argc, argv);
-  if (!write_human.empty()) {
-    OpenMeshSkinned::export_gltf(human(), write_human);
+  if (!write.empty()) {
+    try {
+      const std::string& name = write[0];
+      Mesh m;
+      if (name == "human") {
+        m = human();
+      } else if (name == "leg") {
+        m = OpenMeshSkinned::make_bending_cylinder();
+      } else if (name == "column") {
+        m = OpenMeshSkinned::make_square_column();
+      } else if (name == "wuson8") {
+        // 3 rounds of smoothing the weight field, 8 bones kept: every vertex near a joint gets 5-8 bones.
+        OpenMeshSkinned::import_skinned(models_dir + "/X/Testwuson.X", m);
+        OpenMeshSkinned::diffuse_skin_weights(m, 3, 8);
+      } else {
+        std::cerr << "omsk-bench: --write: unknown character " << name << "\n";
+        return 2;
+      }
+      OpenMeshSkinned::export_gltf(m, write[1]);
+    } catch (const std::exception& e) {
+      std::cerr << "omsk-bench: " << e.what() << "\n";
+      return 1;
+    }
     return 0;
   }
   if (!all && workload.empty()) {

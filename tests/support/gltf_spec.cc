@@ -68,6 +68,21 @@ std::vector<double> read(const tinygltf::Model& model, int index) {
           v = *p;
           if (acc.normalized) v /= 255.0;
           break;
+        // Signed normalised integers (gltfpack writes rotation keys so): max(c / (2^(n-1) - 1), -1).
+        case TINYGLTF_COMPONENT_TYPE_BYTE: {
+          int8_t b;
+          std::memcpy(&b, p, 1);
+          v = b;
+          if (acc.normalized) v = std::max(v / 127.0, -1.0);
+          break;
+        }
+        case TINYGLTF_COMPONENT_TYPE_SHORT: {
+          int16_t s;
+          std::memcpy(&s, p, 2);
+          v = s;
+          if (acc.normalized) v = std::max(v / 32767.0, -1.0);
+          break;
+        }
         case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
           uint16_t s;
           std::memcpy(&s, p, 2);

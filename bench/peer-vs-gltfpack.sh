@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# The peer benchmark: skinned-decimate against meshoptimizer's gltfpack 1.3 (npm, pinned in tools/) at equal
+# triangle counts, judged on held-out frames neither tool saw, every file posed by the glTF spec itself
+# (build/bench/omsk-peer). gltfpack simplifies first; ours is asked for gltfpack's achieved count with --faces.
+#
+#   bench/peer-vs-gltfpack.sh [RATIOS]      (default "0.5 0.25 0.1"; needs scripts/build and scripts/setup)
+#
+# Characters (each given to both tools as the same GLB): Testwuson.X and FBX/animation_with_skeleton.fbx
+# (converted once by skinned-decimate --ratio 1), glTF2/simple_skin, DeCoro's leg and the L&S column
+# (omsk-bench --write), and wuson8: Testwuson with its skin diffused over 8 bones (three rounds of
+# Laplacian smoothing of the weight field, 8 heaviest kept, renormalised: OpenMeshSkinned::diffuse_skin_weights).
+# gltfpack runs twice: -se 1 (no error limit: it reaches the ratio) and with its default error limit
+# (it may stop early; ours is then asked for the same, larger, count: light simplification).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ratios=${1:-"0.5 0.25 0.1"}
+cli=build/apps/skinned-decimate
+bench=build/bench/omsk-bench
+peer=build/bench/omsk-peer
+gltfpack=tools/node_modules/gltfpack/cli.js
+models=/usr/share/assimp/models
+for f in "$cli" "$bench" "$peer" "$gltfpack"; do
+  [ -e "$f" ] || { echo "peer-vs-gltfpack: $f is missing: run scripts/build and scripts/setup first" >&2; exit 1; }
+done
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+"$cli" "$models/X/Testwuson.X" -o "$work/wuson.glb" --ratio 1 --quiet --no-eval >/dev/null
+"$cli" "$models/FBX/animation_with_skeleton.fbx" -o "$work/fbx.glb" --ratio 1 --quiet --no-eval >/dev/null 2>&1
+"$bench" --write leg "$work/leg.glb"
+"$bench" --write column "$work/column.glb"
+"$bench" --write wuson8 "$work/wuson8.glb"
+inputs=("$work/wuson.glb" "$work/fbx.glb" "$models/glTF2/simple_skin/simple_skin.gltf" "$work/leg.glb"
+  "$work/column.glb" "$work/wuson8.glb")
+
+triangles() { grep -o 'output: 1 mesh primitives ([0-9]* triangles' "$1" | grep -o '[0-9]* triangles' | cut -d' ' -f1; }
+field() { grep "\"candidate\":\"$2\"" "$1" | grep -o "\"$3\":[0-9.e+-]*" | cut -d: -f2; }
+
+printf '%-14s %-9s %6s %9s | %10s %10s %7s | %10s %10s %7s\n' character gltfpack ratio triangles \
+  "gp RMS%" "ours RMS%" "ratio" "gp Haus%" "ours Haus%" "ratio"
+for in in "${inputs[@]}"; do
+  name=$(basename "${in%.*}")
+  for r in $ratios; do
+    for mode in "-se 1" "default"; do
+      extra=()
+      [ "$mode" = "-se 1" ] && extra=(-se 1)
+      node "$gltfpack" -i "$in" -o "$work/gp.glb" -si "$r" -sv -sp "${extra[@]}" -noq -v >"$work/gp.log" 2>&1 ||
+        { echo "peer-vs-gltfpack: gltfpack failed on $in" >&2; cat "$work/gp.log" >&2; exit 1; }
+      n=$(triangles "$work/gp.log" || true)
+      if [ -z "$n" ] || [ "$n" -lt 1 ]; then
+        printf '%-14s %-9s %6s   gltfpack kept no triangle\n' "$name" "$mode" "$r"
+        continue
+      fi
+      "$cli" "$in" -o "$work/ours.glb" --faces "$n" --quiet --no-eval >"$work/ours.log" 2>&1 ||
+        { echo "peer-vs-gltfpack: skinned-decimate failed on $in:" >&2; cat "$work/ours.log" >&2; exit 1; }
+      "$peer" "$in" "$work/gp.glb" "$work/ours.glb" >"$work/peer.jsonl"
+      gr=$(field "$work/peer.jsonl" "$work/gp.glb" heldout_rms)
+      or=$(field "$work/peer.jsonl" "$work/ours.glb" heldout_rms)
+      gh=$(field "$work/peer.jsonl" "$work/gp.glb" heldout_hausdorff)
+      oh=$(field "$work/peer.jsonl" "$work/ours.glb" heldout_hausdorff)
+      ot=$(field "$work/peer.jsonl" "$work/ours.glb" triangles)
+      awk -v c="$name" -v m="$mode" -v r="$r" -v n="$n" -v ot="$ot" -v gr="$gr" -v or="$or" -v gh="$gh" -v oh="$oh" \
+        'BEGIN {printf "%-14s %-9s %6s %4s/%-4s | %10.4f %10.4f %7.2f | %10.4f %10.4f %7.2f\n", c, m, r, n, ot, gr, or,
+                (gr > 0 ? or / gr : 0), gh, oh, (gh > 0 ? oh / gh : 0)}'
+    done
+  done
+done
