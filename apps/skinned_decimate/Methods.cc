@@ -4,6 +4,7 @@
 #include <OpenMeshSkinned/Decimater/Baselines/ModPoseIndependentQuadricT.hh>
 #include <OpenMeshSkinned/Decimater/Baselines/ModRestPoseQuadricT.hh>
 #include <OpenMeshSkinned/Decimater/LazyDecimaterT.hh>
+#include <OpenMeshSkinned/Decimater/ModJointGuardT.hh>
 #include <OpenMeshSkinned/Decimater/ModSkinnedFoldOverT.hh>
 #include <OpenMeshSkinned/Decimater/ModSkinnedQuadricT.hh>
 #include <OpenMeshSkinned/Decimater/ModWeightCapT.hh>
@@ -33,6 +34,7 @@ struct Handles {
   OpenMeshSkinned::ModSkinnedQuadricT<Mesh>::Handle skinned;
   OpenMeshSkinned::ModSkinnedFoldOverT<Mesh>::Handle fold_over;
   OpenMeshSkinned::ModWeightCapT<Mesh>::Handle cap;
+  OpenMeshSkinned::ModJointGuardT<Mesh>::Handle guard;
   OpenMesh::Decimater::ModQuadricT<Mesh>::Handle quadric;
   OpenMesh::Decimater::ModNormalFlippingT<Mesh>::Handle normal_flipping;
   OpenMeshSkinned::ModRestPoseQuadricT<Mesh>::Handle rest;
@@ -129,6 +131,10 @@ std::vector<std::pair<Lod, Mesh>> build_chain(Mesh mesh, const std::vector<size_
   it->add(*dec, h);
   dec->add(h.cap);
   dec->module(h.cap).set_max_influences(opt.max_influences);
+  if (opt.joint_guard > 0.0) {
+    dec->add(h.guard);
+    dec->module(h.guard).set_tau(opt.joint_guard);
+  }
   if (opt.threads > 0) dec->set_threads(opt.threads);
   if (!dec->initialize()) throw std::runtime_error("the decimater did not initialize");
   Progress progress(!opt.quiet && isatty(2), n_vertices_in - targets.back() / 2, label);

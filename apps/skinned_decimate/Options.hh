@@ -31,6 +31,7 @@ struct Options {
   bool evaluate = true;
   std::string html, preview;  // --html page, --preview PNG
   bool html_beside = false;   // --html-assets beside: the GLBs in a script next to the page
+  double joint_guard = 0.0;   // --joint-guard TAU (0: off)
 };
 
 // Past this many example poses the schedule stops being a sample of the clips and becomes the clips.

@@ -65,6 +65,10 @@ int main(int argc, char** argv) {
   app.add_option("--preview", opt.preview,
                  "Write a PNG contact sheet of the page (rows: original and LODs; columns: held-out frames), "
                  "rendered by headless Chromium");
+  app.add_option("--joint-guard", opt.joint_guard,
+                 "Savoye & Meyer's joint-region guard: vertices with a weight of at least TAU times their joint's "
+                 "average weight may not disappear (the paper's TAU is 1; default off)")
+      ->check(CLI::PositiveNumber);
   app.add_flag("!--no-eval", opt.evaluate,
                "Skip measuring the error in held-out frames (batch use: the table shows triangles and time only)");
   try {
