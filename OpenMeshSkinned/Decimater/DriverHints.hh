@@ -50,6 +50,8 @@ public:
 class EndpointPriority {
 public:
   virtual ~EndpointPriority() = default;
+  /// False for a module of this family whose prices look at the faces around the endpoints after all.
+  virtual bool prices_by_endpoints() const { return true; }
 };
 
 }  // namespace OpenMeshSkinned

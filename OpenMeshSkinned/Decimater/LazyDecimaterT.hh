@@ -92,7 +92,8 @@ public:
         if (m->name() == "Quadric") priority_ = m;
     for (Module* m : modules_)
       if (m != priority_) binary_.push_back(m);
-    endpoint_priority_ = priority_ && dynamic_cast<EndpointPriority*>(priority_) != nullptr;
+    const auto* ep = priority_ ? dynamic_cast<EndpointPriority*>(priority_) : nullptr;
+    endpoint_priority_ = ep && ep->prices_by_endpoints();
     return priority_ != nullptr;
   }
 

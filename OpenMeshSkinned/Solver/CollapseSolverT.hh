@@ -51,6 +51,9 @@ class EdgeModelT {
 public:
   virtual ~EdgeModelT() = default;
   virtual void solve_edge(typename Mesh::VertexHandle a, typename Mesh::VertexHandle b, CollapseResult& out) = 0;
+  /// Whether an answer also depends on the faces around the edge (then a collapse makes the answers of
+  /// every edge around the surviving vertex's ring stale, not only of the edges at that vertex).
+  virtual bool ring_dependent() const { return false; }
 };
 
 /// What a module attached to the solver asks of it (SolverModuleT implements it).
@@ -284,6 +287,8 @@ public:
     morph_.apply(v1);
     cache_.touch(v1.idx());
     cache_.touch(v0.idx());
+    if (model_ && model_->ring_dependent())
+      for (auto v : mesh_.vv_range(v1)) cache_.touch(v.idx());
     // Moved or not, v1 now holds v0's faces: verdicts around it may be stale. (After the stamps: the
     // re-checks must not reuse answers cached for v1 as it was.)
     if (settings_.placement && settings_.fold_check && !checks_at_pop_)

@@ -3,6 +3,7 @@
 #include <OpenMeshSkinned/Decimater/Baselines/ModDeformationSensitiveT.hh>
 #include <OpenMeshSkinned/Decimater/Baselines/ModPoseIndependentQuadricT.hh>
 #include <OpenMeshSkinned/Decimater/Baselines/ModRestPoseQuadricT.hh>
+#include <OpenMeshSkinned/Decimater/Baselines/ModTriangleCompactnessT.hh>
 #include <OpenMeshSkinned/Decimater/LazyDecimaterT.hh>
 #include <OpenMeshSkinned/Decimater/ModJointGuardT.hh>
 #include <OpenMeshSkinned/Decimater/ModSkinnedFoldOverT.hh>
@@ -40,6 +41,7 @@ struct Handles {
   OpenMeshSkinned::ModRestPoseQuadricT<Mesh>::Handle rest;
   OpenMeshSkinned::ModDeformationSensitiveT<Mesh>::Handle dsd;
   OpenMeshSkinned::ModPoseIndependentQuadricT<Mesh>::Handle decoro;
+  OpenMeshSkinned::ModTriangleCompactnessT<Mesh>::Handle compact;
 };
 
 struct MethodModules {
@@ -57,6 +59,8 @@ const std::vector<MethodModules>& table() {
        [](Decimater& d, Handles& h) { d.add(h.dsd), d.add(h.fold_over); }},
       {{"rest", "rest-pose quadric, distance-interpolated weights"},
        [](Decimater& d, Handles& h) { d.add(h.rest), d.add(h.fold_over); }},
+      {{"compact", "Savoye-Meyer triangle compactness, barycentre placement, power skinning"},
+       [](Decimater& d, Handles& h) { d.add(h.compact), d.add(h.fold_over); }},
       {{"static", "OpenMesh's ModQuadricT and ModNormalFlippingT as they are"},
        [](Decimater& d, Handles& h) { d.add(h.quadric), d.add(h.normal_flipping); }},
   };

@@ -17,7 +17,7 @@ struct Method {
 
 /// Every method, the product first: the order of --compare.
 const std::vector<Method>& methods();
-/// "skinned, decoro, dsd, rest or static".
+/// "skinned, decoro, dsd, rest, compact or static".
 std::string method_names();
 bool is_method(const std::string& name);
 
