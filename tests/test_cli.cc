@@ -145,3 +145,29 @@ TEST(Cli, ThreadCountChangesNothingAndNoEvalSkipsOnlyTheError) {
   EXPECT_GT(rep[0]["seconds"]["evaluate"].get<double>(), 0.0);
   EXPECT_GT(rep[0]["import_seconds"].get<double>(), 0.0);
 }
+
+TEST(Cli, AnimErrorThinsTheClipsOfEveryLodWithinItsBound) {
+  const auto d = scratch("anim");
+  nlohmann::json rep[2];
+  for (int i = 0; i < 2; ++i) {
+    const auto r = cli(wuson + " -o a" + std::to_string(i) + ".glb --lods 0.5,0.25 --report r" + std::to_string(i) +
+                           ".json --quiet" + (i ? " --anim-error 0.1" : ""),
+                       d);
+    ASSERT_EQ(r.code, 0) << r.out;
+    std::ifstream(d / ("r" + std::to_string(i) + ".json")) >> rep[i];
+  }
+  for (int l = 0; l < 2; ++l) {
+    const auto &full = rep[0]["lods"][l], &thin = rep[1]["lods"][l];
+    EXPECT_LT(thin["keys"].get<size_t>(), full["keys"].get<size_t>() * 6 / 10);
+    EXPECT_EQ(thin["faces"], full["faces"]);
+    // Each vertex moves by at most 0.1% of the diagonal in the clips' frames: the held-out error barely moves.
+    EXPECT_LT(thin["heldout_rms"].get<double>(), 1.1 * full["heldout_rms"].get<double>());
+    const fs::path file = d / ("a1_lod" + std::to_string(l + 1) + ".glb");
+    omsk_test::expect_valid_gltf(file.string());
+    tinygltf::Model m;
+    tinygltf::TinyGLTF loader;
+    std::string err, warn;
+    ASSERT_TRUE(loader.LoadBinaryFromFile(&m, &err, &warn, file.string())) << err;
+    EXPECT_EQ(m.animations.size(), 3u);  // every clip kept, thinner
+  }
+}

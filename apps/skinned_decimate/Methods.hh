@@ -28,6 +28,7 @@ struct Lod {
   size_t faces = 0, vertices = 0;
   double seconds = 0.0;
   int max_influences = 0;
+  size_t keys = 0;                    // key frames over its clips' channels (fewer with --anim-error)
   bool evaluated = false;             // false with --no-eval
   double rms = 0.0, hausdorff = 0.0;  // % of the rest-pose bounding-box diagonal
   std::vector<float> vertex_error;    // per vertex, max over held-out frames, % of the diagonal (--html)

@@ -9,6 +9,7 @@
 #include <OpenMeshSkinned/IO/Import.hh>
 #include <OpenMeshSkinned/IO/OutputSet.hh>
 #include <OpenMeshSkinned/Mesh/Procedural.hh>
+#include <OpenMeshSkinned/Skin/KeyReduction.hh>
 #include <OpenMeshSkinned/Skin/PoseSchedule.hh>
 
 #include <unistd.h>
@@ -109,8 +110,9 @@ std::vector<float> vertex_errors(const TriangleSoup& original, const MeasuredSur
 // Frame by frame, threads taking frames in turn: the posed original's surface (tree and samples) is built
 // once per frame and measured against every LOD; sums are taken in frame order, so the numbers do not
 // depend on the thread count.
+// \p lod_frames[i], when not empty, are LOD i's own poses of the same frames (its clips were reduced).
 void evaluate(const Mesh& original, std::vector<std::pair<Lod, Mesh>>& chain, const std::vector<Pose>& frames,
-              int threads, bool per_vertex) {
+              const std::vector<std::vector<Pose>>& lod_frames, int threads, bool per_vertex) {
   const double diag = bbox_diagonal(original);
   const size_t n_lods = chain.size();
   std::vector<SurfaceDistance> d(frames.size() * n_lods);
@@ -125,7 +127,8 @@ void evaluate(const Mesh& original, std::vector<std::pair<Lod, Mesh>>& chain, co
         const TriangleSoup original_soup = posed_soup(original, frames[f]);
         const MeasuredSurface posed(original_soup, kEvalSamples, 1);
         for (size_t i = 0; i < n_lods; ++i) {
-          const TriangleSoup lod = posed_soup(chain[i].second, frames[f]);
+          const TriangleSoup lod =
+              posed_soup(chain[i].second, lod_frames.empty() || lod_frames[i].empty() ? frames[f] : lod_frames[i][f]);
           const MeasuredSurface lod_surface(lod, kEvalSamples, 0x9E3779B97F4A7C16ull);
           d[f * n_lods + i] = surface_distance(posed, lod_surface);
           if (per_vertex) vd[f * n_lods + i] = vertex_errors(original_soup, posed, lod, lod_surface, diag);
@@ -198,7 +201,19 @@ json run_character(const Mesh& mesh, const std::string& name, const Options& opt
   auto chain = build_chain(std::move(work), targets, ratios, opt, method, name + " (" + method + ")");
   const auto t1 = Clock::now();
   const bool want_html = html != nullptr;
-  if (opt.evaluate) evaluate(mesh, chain, poses.heldout, opt.threads > 0 ? opt.threads : hardware_threads(), want_html);
+  // Motion LoD: each LOD's clips thinned as far as its own skinned surface allows (--anim-error).
+  std::vector<std::vector<Pose>> lod_frames;
+  if (opt.anim_error > 0.0 && !clips(mesh).empty()) {
+    const double bound = opt.anim_error / 100.0 * bbox_diagonal(mesh);
+    const auto& times = poses.schedule.held_out.empty() ? poses.schedule.examples : poses.schedule.held_out;
+    for (auto& [lod, lmesh] : chain) {
+      clips(lmesh) = reduce_clips_to_error(lmesh, bound);
+      lod_frames.push_back(poses_at(skeleton(lmesh), clips(lmesh), times));
+    }
+  }
+  for (auto& [lod, lmesh] : chain) lod.keys = count_keys(clips(lmesh));
+  if (opt.evaluate)
+    evaluate(mesh, chain, poses.heldout, lod_frames, opt.threads > 0 ? opt.threads : hardware_threads(), want_html);
   const auto t2 = Clock::now();
   const bool animated = !clips(mesh).empty();
   print_table(name + " — " + method + (animated ? "" : ", rest pose only") + ", " + std::to_string(mesh.n_faces()) +

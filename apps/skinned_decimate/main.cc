@@ -69,6 +69,10 @@ int main(int argc, char** argv) {
                  "Savoye & Meyer's joint-region guard: vertices with a weight of at least TAU times their joint's "
                  "average weight may not disappear (the paper's TAU is 1; default off)")
       ->check(CLI::PositiveNumber);
+  app.add_option("--anim-error", opt.anim_error,
+                 "Motion LoD: drop every key frame whose loss moves no vertex of the LOD by more than E % of the "
+                 "diagonal, in any frame of the clips (default: clips kept whole)")
+      ->check(CLI::PositiveNumber);
   app.add_flag("!--no-eval", opt.evaluate,
                "Skip measuring the error in held-out frames (batch use: the table shows triangles and time only)");
   try {
