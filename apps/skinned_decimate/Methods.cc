@@ -93,14 +93,14 @@ private:
   bool shown_ = false;
 };
 
+}  // namespace
+
 int max_influences_of(const Mesh& mesh) {
   const auto h = OpenMeshSkinned::influences_handle(mesh);
   int n = 0;
   for (auto vh : mesh.vertices()) n = std::max(n, mesh.property(h, vh).size());
   return n;
 }
-
-}  // namespace
 
 const std::vector<Method>& methods() {
   static const std::vector<Method> m = [] {

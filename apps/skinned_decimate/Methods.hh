@@ -21,6 +21,9 @@ const std::vector<Method>& methods();
 std::string method_names();
 bool is_method(const std::string& name);
 
+/// Most bones on any vertex of \p mesh.
+int max_influences_of(const Mesh& mesh);
+
 /// One level of a chain as measured.
 struct Lod {
   double ratio = 0.0;
@@ -29,6 +32,7 @@ struct Lod {
   double seconds = 0.0;
   int max_influences = 0;
   size_t keys = 0;                    // key frames over its clips' channels (fewer with --anim-error)
+  int joints = 0;                     // its skeleton's joints (fewer with --max-joints)
   bool evaluated = false;             // false with --no-eval
   double rms = 0.0, hausdorff = 0.0;  // % of the rest-pose bounding-box diagonal
   std::vector<float> vertex_error;    // per vertex, max over held-out frames, % of the diagonal (--html)

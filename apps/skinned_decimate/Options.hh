@@ -33,6 +33,7 @@ struct Options {
   bool html_beside = false;   // --html-assets beside: the GLBs in a script next to the page
   double joint_guard = 0.0;   // --joint-guard TAU (0: off)
   double anim_error = 0.0;    // --anim-error E, % of the diagonal (0: clips kept whole)
+  int max_joints = 0;         // --max-joints N (0: skeleton kept whole)
 };
 
 // Past this many example poses the schedule stops being a sample of the clips and becomes the clips.

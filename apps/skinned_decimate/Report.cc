@@ -30,13 +30,14 @@ void print_table(const std::string& title, const std::vector<std::pair<Lod, Mesh
             << "  " << std::left << std::setw(8) << "ratio" << std::right << std::setw(10) << "triangles"
             << std::setw(10) << "vertices" << std::setw(10) << "seconds" << std::setw(10) << "max infl" << std::setw(14)
             << (have_heldout ? "heldout RMS%" : "rest RMS%") << std::setw(15)
-            << (have_heldout ? "heldout Haus%" : "rest Haus%") << std::setw(8) << "keys"
+            << (have_heldout ? "heldout Haus%" : "rest Haus%") << std::setw(8) << "joints" << std::setw(8) << "keys"
             << "\n";
   for (const auto& [lod, mesh] : chain)
     std::cout << "  " << std::left << std::setw(8) << fmt(lod.ratio, 4) << std::right << std::setw(10) << lod.faces
               << std::setw(10) << lod.vertices << std::setw(10) << fmt(lod.seconds, 2) << std::setw(10)
               << lod.max_influences << std::setw(14) << (lod.evaluated ? fmt(lod.rms, 4) : "-") << std::setw(15)
-              << (lod.evaluated ? fmt(lod.hausdorff, 4) : "-") << std::setw(8) << lod.keys << "\n";
+              << (lod.evaluated ? fmt(lod.hausdorff, 4) : "-") << std::setw(8) << lod.joints << std::setw(8) << lod.keys
+              << "\n";
   for (const auto& [lod, mesh] : chain)
     if (lod.faces > lod.target)
       std::cout << "  ratio " << fmt(lod.ratio, 4) << ": target of " << lod.target
@@ -67,6 +68,7 @@ json lod_json(const Lod& lod, const std::vector<OpenMeshSkinned::Clip>& clips,
             {"vertices", lod.vertices},
             {"seconds", lod.seconds},
             {"max_influences", lod.max_influences},
+            {"joints", lod.joints},
             {"keys", lod.keys},
             {"heldout_rms", lod.evaluated ? json(lod.rms) : json(nullptr)},
             {"heldout_hausdorff", lod.evaluated ? json(lod.hausdorff) : json(nullptr)},

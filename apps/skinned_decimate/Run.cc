@@ -11,6 +11,7 @@
 #include <OpenMeshSkinned/Mesh/Procedural.hh>
 #include <OpenMeshSkinned/Skin/KeyReduction.hh>
 #include <OpenMeshSkinned/Skin/PoseSchedule.hh>
+#include <OpenMeshSkinned/Solver/SkeletonLodT.hh>
 
 #include <unistd.h>
 
@@ -201,17 +202,24 @@ json run_character(const Mesh& mesh, const std::string& name, const Options& opt
   auto chain = build_chain(std::move(work), targets, ratios, opt, method, name + " (" + method + ")");
   const auto t1 = Clock::now();
   const bool want_html = html != nullptr;
-  // Motion LoD: each LOD's clips thinned as far as its own skinned surface allows (--anim-error).
+  // Skeleton LoD (--max-joints), then motion LoD (--anim-error: clips thinned as far as the LOD's own skinned
+  // surface allows); the LOD is then judged with its own skeleton and clips.
   std::vector<std::vector<Pose>> lod_frames;
-  if (opt.anim_error > 0.0 && !clips(mesh).empty()) {
-    const double bound = opt.anim_error / 100.0 * bbox_diagonal(mesh);
+  const bool animated_lod = (opt.max_joints > 0 || opt.anim_error > 0.0) && !clips(mesh).empty();
+  if (animated_lod) {
     const auto& times = poses.schedule.held_out.empty() ? poses.schedule.examples : poses.schedule.held_out;
     for (auto& [lod, lmesh] : chain) {
-      clips(lmesh) = reduce_clips_to_error(lmesh, bound);
+      if (opt.max_joints > 0) reduce_mesh_skeleton(lmesh, opt.max_joints, opt.max_influences);
+      if (opt.anim_error > 0.0)
+        clips(lmesh) = reduce_clips_to_error(lmesh, opt.anim_error / 100.0 * bbox_diagonal(mesh));
       lod_frames.push_back(poses_at(skeleton(lmesh), clips(lmesh), times));
     }
   }
-  for (auto& [lod, lmesh] : chain) lod.keys = count_keys(clips(lmesh));
+  for (auto& [lod, lmesh] : chain) {
+    lod.keys = count_keys(clips(lmesh));
+    lod.joints = skeleton(lmesh).size();
+    lod.max_influences = max_influences_of(lmesh);
+  }
   if (opt.evaluate)
     evaluate(mesh, chain, poses.heldout, lod_frames, opt.threads > 0 ? opt.threads : hardware_threads(), want_html);
   const auto t2 = Clock::now();

@@ -69,6 +69,10 @@ int main(int argc, char** argv) {
                  "Savoye & Meyer's joint-region guard: vertices with a weight of at least TAU times their joint's "
                  "average weight may not disappear (the paper's TAU is 1; default off)")
       ->check(CLI::PositiveNumber);
+  app.add_option("--max-joints", opt.max_joints,
+                 "Skeleton LoD: remove the least energetic minor joints (Savoye & Meyer) until N remain, baking "
+                 "their motion into their children and re-solving the skins (default: skeleton kept whole)")
+      ->check(CLI::PositiveNumber);
   app.add_option("--anim-error", opt.anim_error,
                  "Motion LoD: drop every key frame whose loss moves no vertex of the LOD by more than E % of the "
                  "diagonal, in any frame of the clips (default: clips kept whole)")
