@@ -29,11 +29,11 @@ struct Options {
   double time_limit = 300.0;
   int threads = 0;  // 0: the hardware's
   bool evaluate = true;
-  std::string html, preview;  // --html page, --preview PNG
-  bool html_beside = false;   // --html-assets beside: the GLBs in a script next to the page
-  double joint_guard = 0.0;   // --joint-guard TAU (0: off)
-  double anim_error = 0.0;    // --anim-error E, % of the diagonal (0: clips kept whole)
-  int max_joints = 0;         // --max-joints N (0: skeleton kept whole)
+  std::string html, preview;    // --html page, --preview PNG
+  bool html_beside = false;     // --html-assets beside: the GLBs in a script next to the page
+  double joint_guard = 0.0;     // --joint-guard TAU (0: off)
+  double anim_error = 0.0;      // --anim-error E, % of the diagonal (0: clips kept whole)
+  std::vector<int> max_joints;  // --max-joints N or N1,N2,... one per LOD (empty: skeleton kept whole)
 };
 
 // Past this many example poses the schedule stops being a sample of the clips and becomes the clips.

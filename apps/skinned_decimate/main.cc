@@ -70,8 +70,9 @@ int main(int argc, char** argv) {
                  "average weight may not disappear (the paper's TAU is 1; default off)")
       ->check(CLI::PositiveNumber);
   app.add_option("--max-joints", opt.max_joints,
-                 "Skeleton LoD: remove the least energetic minor joints (Savoye & Meyer) until N remain, baking "
-                 "their motion into their children and re-solving the skins (default: skeleton kept whole)")
+                 "Skeleton LoD: remove minor joints (Savoye & Meyer) until N remain, baking their motion into their "
+                 "children and re-solving the skins; one value, or one per LOD (N1,N2,...; the last repeats)")
+      ->delimiter(',')
       ->check(CLI::PositiveNumber);
   app.add_option("--anim-error", opt.anim_error,
                  "Motion LoD: drop every key frame whose loss moves no vertex of the LOD by more than E % of the "
