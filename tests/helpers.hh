@@ -138,6 +138,27 @@ struct Modules {
   double max_angle = 90.0;
 };
 
+/// The three skinned modules added to \p dec as the tool adds them (cap 4, fold-over at 90 degrees).
+template <typename Decimater>
+struct SkinnedModules {
+  typename OpenMeshSkinned::ModSkinnedQuadricT<Mesh>::Handle quadric;
+  typename OpenMeshSkinned::ModWeightCapT<Mesh>::Handle cap;
+  typename OpenMeshSkinned::ModSkinnedFoldOverT<Mesh>::Handle fold;
+  explicit SkinnedModules(Decimater& dec) {
+    dec.add(quadric);
+    dec.add(cap);
+    dec.add(fold);
+  }
+};
+
+/// Both meshes have the same vertices (positions) and faces, in the same order.
+inline void expect_same_mesh(const Mesh& a, const Mesh& b) {
+  ASSERT_EQ(a.n_vertices(), b.n_vertices());
+  ASSERT_EQ(a.n_faces(), b.n_faces());
+  for (auto vh : a.vertices()) EXPECT_EQ(a.point(vh), b.point(vh));
+  for (auto fh : a.faces()) EXPECT_EQ(a.fv_range(fh).to_vector(), b.fv_range(fh).to_vector());
+}
+
 struct RunResult {
   size_t faces_before = 0, faces_after = 0, collapses = 0, flipped = 0, forced = 0, fallbacks = 0;
 };

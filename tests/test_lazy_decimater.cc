@@ -133,29 +133,16 @@ TEST(LazyDecimater, TheResultDoesNotDependOnTheThreadCount) {
   Mesh meshes[2] = {original, original};
   for (int t = 0; t < 2; ++t) {
     Lazy dec(meshes[t]);
-    ModSkinnedQuadricT<Mesh>::Handle hq;
-    ModWeightCapT<Mesh>::Handle hc;
-    ModSkinnedFoldOverT<Mesh>::Handle hf;
-    dec.add(hq);
-    dec.add(hc);
-    dec.add(hf);
+    omsk_test::SkinnedModules<Lazy> modules(dec);
     dec.set_threads(t == 0 ? 1 : 3);
     ASSERT_TRUE(dec.initialize());
     dec.decimate_to_faces(0, original.n_faces() / 5);
     EXPECT_GT(dec.stats().collapses, original.n_vertices() / 2);
     meshes[t].garbage_collection();
   }
-  ASSERT_EQ(meshes[0].n_vertices(), meshes[1].n_vertices());
-  ASSERT_EQ(meshes[0].n_faces(), meshes[1].n_faces());
+  omsk_test::expect_same_mesh(meshes[0], meshes[1]);
   const auto h = influences_handle(original);
-  for (auto vh : meshes[0].vertices()) {
-    EXPECT_EQ(meshes[0].point(vh), meshes[1].point(vh));
-    EXPECT_EQ(meshes[0].property(h, vh).size(), meshes[1].property(h, vh).size());
-  }
-  for (auto fh : meshes[0].faces()) {
-    auto a = meshes[0].fv_range(fh).to_vector(), b = meshes[1].fv_range(fh).to_vector();
-    EXPECT_EQ(a, b);
-  }
+  for (auto vh : meshes[0].vertices()) EXPECT_EQ(meshes[0].property(h, vh).size(), meshes[1].property(h, vh).size());
 }
 
 TEST(LazyDecimater, InitializeNeedsExactlyOnePriorityModuleAndTheMarkIsRemovedAfterwards) {

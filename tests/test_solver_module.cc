@@ -90,25 +90,19 @@ TEST(SolverModule, ARestSpaceModuleReplacesTheSkinnedQuadricAsTheEdgeModel) {
 }
 
 TEST(SolverModule, SolvingEveryEdgeAheadOnThreadsChangesNothingUnderDecimaterT) {
+  using Decimater = OpenMesh::Decimater::DecimaterT<Mesh>;
   const Mesh original = make_bending_cylinder(16, 24);
   Mesh meshes[2] = {original, original};
   for (int t = 0; t < 2; ++t) {
-    OpenMesh::Decimater::DecimaterT<Mesh> dec(meshes[t]);
-    ModSkinnedQuadricT<Mesh>::Handle hq;
-    ModWeightCapT<Mesh>::Handle hc;
-    ModSkinnedFoldOverT<Mesh>::Handle hf;
-    dec.add(hq);
-    dec.add(hc);
-    dec.add(hf);
-    dec.module(hq).solver().set_threads(t == 0 ? 1 : 3);
+    Decimater dec(meshes[t]);
+    omsk_test::SkinnedModules<Decimater> m(dec);
+    dec.module(m.quadric).solver().set_threads(t == 0 ? 1 : 3);
     ASSERT_TRUE(dec.initialize());
     dec.decimate_to_faces(0, original.n_faces() / 5);
     // Every edge was solved once ahead; the decimation itself only re-solves what its collapses changed.
-    EXPECT_GE(dec.module(hq).solver().stats().solves, original.n_edges());
-    dec.module(hf).release_deferred();
+    EXPECT_GE(dec.module(m.quadric).solver().stats().solves, original.n_edges());
+    dec.module(m.fold).release_deferred();
     meshes[t].garbage_collection();
   }
-  ASSERT_EQ(meshes[0].n_vertices(), meshes[1].n_vertices());
-  ASSERT_EQ(meshes[0].n_faces(), meshes[1].n_faces());
-  for (auto vh : meshes[0].vertices()) EXPECT_EQ(meshes[0].point(vh), meshes[1].point(vh));
+  omsk_test::expect_same_mesh(meshes[0], meshes[1]);
 }
