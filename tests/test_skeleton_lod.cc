@@ -44,6 +44,28 @@ TEST(SkeletonLod, EnergyOfASwingThatReturnsIsItsTotalVariation) {
   EXPECT_EQ(e[2], 0.0);
 }
 
+TEST(SkeletonLod, AnEnergyThresholdRemovesExactlyTheMinorJointsUnderIt) {
+  const Skeleton s = chain_of({-1, 0, 1, 2, 3});  // root, three minor joints, an end-effector
+  Clip clip;
+  clip.duration = 2.0;
+  for (int j : {1, 2}) {  // joint 1 swings 0.2 rad and back, joint 2 0.8 rad and back
+    Channel ch;
+    ch.joint = j;
+    ch.rotation_times = {0, 1, 2};
+    const double a = j == 1 ? 0.2 : 0.8;
+    ch.rotations = {about_x(0.0), about_x(a), about_x(0.0)};
+    clip.channels.push_back(ch);
+  }
+  const auto e = joint_energy(s, {clip});
+  ASSERT_LT(e[3], e[1]);  // joint 3 never moves
+  ASSERT_LT(e[1], e[2]);
+  const auto r = reduce_skeleton(s, {clip}, s.size(), nullptr, 0.5 * (e[1] + e[2]));
+  EXPECT_EQ(r.new_index[1], -1);
+  EXPECT_GE(r.new_index[2], 0);
+  EXPECT_EQ(r.new_index[3], -1);
+  EXPECT_EQ(r.skeleton.size(), 3);
+}
+
 TEST(SkeletonLod, LabelsOfASmallHumanoid) {
   // root - spine - chest; chest has neck-head, left arm-hand, right arm-hand.
   const Skeleton s = chain_of({-1, 0, 1, 2, 3, 2, 5, 2, 7});

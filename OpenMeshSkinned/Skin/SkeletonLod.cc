@@ -72,7 +72,7 @@ std::vector<double> joint_energy(const Skeleton& skel, const std::vector<Clip>& 
 }
 
 SkeletonReduction reduce_skeleton(const Skeleton& skel, const std::vector<Clip>& clips, int max_joints,
-                                  const JointRemovalCost& cost) {
+                                  const JointRemovalCost& cost, double energy_threshold) {
   const int n = skel.size();
   const std::vector<JointLabel> labels = label_joints(skel);
   const std::vector<double> energy = joint_energy(skel, clips);
@@ -83,6 +83,8 @@ SkeletonReduction reduce_skeleton(const Skeleton& skel, const std::vector<Clip>&
     return p;
   };
   int count = n;
+  for (int j = 0; j < n; ++j)
+    if (labels[j] == JointLabel::Minor && energy[j] < energy_threshold) removed[j] = 1, --count;
   while (count > max_joints) {
     int best = -1;
     double best_cost = 0.0;

@@ -40,11 +40,12 @@ struct SkeletonReduction {
 /** What removing joint \p j costs when \p heir (its nearest kept ancestor) takes over its motion. */
 using JointRemovalCost = std::function<double(int j, int heir)>;
 
-/** Removes minor joints until at most \p max_joints remain (or no minor joint is left): the least
- *  energetic first (the paper), or, given \p cost, the cheapest first, re-costed after every removal
- *  (heirs change as ancestors go). Kept joints keep their inverse binds and move as before in every clip
- *  (exactly at every key). */
+/** Removes every minor joint whose energy is under \p energy_threshold (the paper's threshold), then more
+ *  minor joints until at most \p max_joints remain (or no minor joint is left): the least energetic first
+ *  (the paper), or, given \p cost, the cheapest first, re-costed after every removal (heirs change as
+ *  ancestors go). Kept joints keep their inverse binds and move as before in every clip (exactly at
+ *  every key). */
 SkeletonReduction reduce_skeleton(const Skeleton& skel, const std::vector<Clip>& clips, int max_joints,
-                                  const JointRemovalCost& cost = nullptr);
+                                  const JointRemovalCost& cost = nullptr, double energy_threshold = 0.0);
 
 }  // namespace OpenMeshSkinned

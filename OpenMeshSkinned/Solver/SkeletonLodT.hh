@@ -13,12 +13,14 @@
 
 namespace OpenMeshSkinned {
 
-/** Reduces \p mesh's skeleton to at most \p max_joints joints (see reduce_skeleton()); skins keep at most
+/** Reduces \p mesh's skeleton to at most \p max_joints joints, and by every minor joint whose energy is
+ *  under \p energy_threshold (see reduce_skeleton()); skins keep at most
  *  \p max_influences bones, re-solved unless \p resolve is false (the weights only handed over). The example poses
  * ("m:skin_poses") are the targets of the re-solve, in the original skeleton; afterwards they are re-indexed to the
  * reduced one. Returns the joints removed. */
 template <typename Mesh>
-int reduce_mesh_skeleton(Mesh& mesh, int max_joints, int max_influences, bool resolve = true) {
+int reduce_mesh_skeleton(Mesh& mesh, int max_joints, int max_influences, bool resolve = true,
+                         double energy_threshold = 0.0) {
   const Skeleton original = skeleton(mesh);
   const auto h = influences_handle(mesh);
   // The posed original surface in the example poses: what the new skins must fit.
@@ -43,7 +45,7 @@ int reduce_mesh_skeleton(Mesh& mesh, int max_joints, int max_influences, bool re
     }
     return c;
   };
-  SkeletonReduction red = reduce_skeleton(original, clips(mesh), max_joints, cost);
+  SkeletonReduction red = reduce_skeleton(original, clips(mesh), max_joints, cost, energy_threshold);
   const int removed = original.size() - red.skeleton.size();
   if (removed == 0) return 0;
   WeightSolver solver;

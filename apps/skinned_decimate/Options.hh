@@ -34,6 +34,7 @@ struct Options {
   double joint_guard = 0.0;     // --joint-guard TAU (0: off)
   double anim_error = 0.0;      // --anim-error E, % of the diagonal (0: clips kept whole)
   std::vector<int> max_joints;  // --max-joints N or N1,N2,... one per LOD (empty: skeleton kept whole)
+  double joint_energy = 0.0;    // --joint-energy E: minor joints under it go (0: none by energy)
 };
 
 // Past this many example poses the schedule stops being a sample of the clips and becomes the clips.

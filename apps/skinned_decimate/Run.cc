@@ -205,13 +205,17 @@ json run_character(const Mesh& mesh, const std::string& name, const Options& opt
   // Skeleton LoD (--max-joints), then motion LoD (--anim-error: clips thinned as far as the LOD's own skinned
   // surface allows); the LOD is then judged with its own skeleton and clips.
   std::vector<std::vector<Pose>> lod_frames;
-  const bool animated_lod = (!opt.max_joints.empty() || opt.anim_error > 0.0) && !clips(mesh).empty();
+  const bool animated_lod =
+      (!opt.max_joints.empty() || opt.joint_energy > 0.0 || opt.anim_error > 0.0) && !clips(mesh).empty();
   if (animated_lod) {
     const auto& times = poses.schedule.held_out.empty() ? poses.schedule.examples : poses.schedule.held_out;
     for (size_t i = 0; i < chain.size(); ++i) {
       Mesh& lmesh = chain[i].second;
-      if (!opt.max_joints.empty())
-        reduce_mesh_skeleton(lmesh, opt.max_joints[std::min(i, opt.max_joints.size() - 1)], opt.max_influences);
+      if (!opt.max_joints.empty() || opt.joint_energy > 0.0) {
+        const int budget =
+            opt.max_joints.empty() ? skeleton(lmesh).size() : opt.max_joints[std::min(i, opt.max_joints.size() - 1)];
+        reduce_mesh_skeleton(lmesh, budget, opt.max_influences, true, opt.joint_energy);
+      }
       if (opt.anim_error > 0.0)
         clips(lmesh) = reduce_clips_to_error(lmesh, opt.anim_error / 100.0 * bbox_diagonal(mesh));
       lod_frames.push_back(poses_at(skeleton(lmesh), clips(lmesh), times));

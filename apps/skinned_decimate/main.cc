@@ -74,6 +74,10 @@ int main(int argc, char** argv) {
                  "children and re-solving the skins; one value, or one per LOD (N1,N2,...; the last repeats)")
       ->delimiter(',')
       ->check(CLI::PositiveNumber);
+  app.add_option("--joint-energy", opt.joint_energy,
+                 "Skeleton LoD by the paper's threshold: remove every minor joint whose joint energy over the clips "
+                 "is under E (with or without --max-joints)")
+      ->check(CLI::PositiveNumber);
   app.add_option("--anim-error", opt.anim_error,
                  "Motion LoD: drop every key frame whose loss moves no vertex of the LOD by more than E % of the "
                  "diagonal, in any frame of the clips (default: clips kept whole)")
