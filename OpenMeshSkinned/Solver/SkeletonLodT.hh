@@ -52,6 +52,14 @@ int reduce_mesh_skeleton(Mesh& mesh, int max_joints, int max_influences, bool re
   SolveSettings settings;
   settings.max_influences = max_influences;
   EdgeProblem p;
+  // A removed joint's kept descendants just below it now carry its motion too: a vertex it moved may
+  // blend them with the heir (a shin between hip and ankle once the knee is gone), so they join the solve.
+  std::vector<std::vector<int>> successors(original.size());
+  for (int k = 0; k < original.size(); ++k) {
+    if (red.new_index[k] < 0) continue;
+    for (int p = original.joints[k].parent; p >= 0 && red.new_index[p] < 0; p = original.joints[p].parent)
+      successors[p].push_back(k);
+  }
   for (auto vh : mesh.vertices()) {
     const Influences& w = mesh.property(h, vh);
     bool touched = false;
@@ -59,6 +67,8 @@ int reduce_mesh_skeleton(Mesh& mesh, int max_joints, int max_influences, bool re
     for (const JointWeight& jw : w) {
       touched |= red.heir[jw.joint] != jw.joint;
       handed.add(red.heir[jw.joint], jw.weight);
+      if (resolve)
+        for (int k : successors[jw.joint]) handed.add(k, 1e-9);  // in the support, weightless until solved
     }
     Influences start = handed.keep_heaviest(max_influences);
     if (resolve && touched && start.size() > 1) {
