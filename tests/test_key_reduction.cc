@@ -44,6 +44,32 @@ TEST(KeyReduction, DuplicatedAndInterpolatedKeysDisappearWithZeroError) {
   EXPECT_EQ(count_keys({r}), 6u);
 }
 
+TEST(KeyReduction, ThePapersFrameMergeDropsDuplicatedFramesWithZeroError) {
+  Skeleton skel;
+  skel.joints.resize(2);
+  skel.joints[1].parent = 0;
+  Clip clip;
+  clip.duration = 5.0;
+  // Frames 0-2 identical (a hold), 3 a pose, 4-5 that pose held: frames 1 and 4 are duplicates inside holds.
+  const double angle[] = {0.0, 0.0, 0.0, 0.7, 0.7, 0.7};
+  for (int j : {0, 1}) {
+    Channel ch;
+    ch.joint = j;
+    for (int f = 0; f < 6; ++f) {
+      ch.rotation_times.push_back(f);
+      ch.rotations.push_back(about_x(j == 0 ? angle[f] : 0.5 * angle[f]));
+    }
+    clip.channels.push_back(ch);
+  }
+  const Clip r = merge_key_frames(clip, skel, 1e-9);
+  EXPECT_EQ(r.channels[0].rotation_times, (std::vector<double>{0, 2, 3, 5}));
+  EXPECT_EQ(r.channels[1].rotation_times, (std::vector<double>{0, 2, 3, 5}));
+  EXPECT_EQ(r.duration, clip.duration);
+  EXPECT_LT(max_local_difference(skel, clip, r), 1e-12);
+  // A threshold above the pose change merges the move too: the motion changes (the surface bound decides).
+  EXPECT_LT(merge_key_frames(clip, skel, 10.0).channels[0].rotation_times.size(), 4u);
+}
+
 TEST(KeyReduction, ATolerancedReductionStaysWithinItsTolerance) {
   Skeleton skel;
   skel.joints.resize(1);
@@ -68,11 +94,13 @@ TEST(KeyReduction, ATolerancedReductionStaysWithinItsTolerance) {
   }
 }
 
-TEST(KeyReduction, TheSurfaceBoundHoldsAndDropsKeysOnARealCharacter) {
+class SurfaceBound : public testing::TestWithParam<KeyReductionMethod> {};
+
+TEST_P(SurfaceBound, HoldsAndDropsKeysOnARealCharacter) {
   const omsk_test::Mesh mesh = omsk_test::load_character("X/Testwuson.X", 2);
   const double bound = 0.002 * bbox_diagonal(mesh);
-  const std::vector<Clip> reduced = reduce_clips_to_error(mesh, bound);
-  EXPECT_LT(count_keys(reduced), count_keys(clips(mesh)) / 2);
+  const std::vector<Clip> reduced = reduce_clips_to_error(mesh, bound, GetParam());
+  EXPECT_LT(count_keys(reduced), count_keys(clips(mesh)) * 3 / 4);
   // Checked independently at every key time of the original clips.
   const Skeleton& skel = skeleton(mesh);
   for (size_t c = 0; c < reduced.size(); ++c)
@@ -82,3 +110,6 @@ TEST(KeyReduction, TheSurfaceBoundHoldsAndDropsKeysOnARealCharacter) {
       for (size_t v = 0; v < a.size(); ++v) ASSERT_LE((a[v] - b[v]).norm(), bound) << "clip " << c << " t " << t;
     }
 }
+
+INSTANTIATE_TEST_SUITE_P(KeyReduction, SurfaceBound,
+                         testing::Values(KeyReductionMethod::Channels, KeyReductionMethod::Frames));

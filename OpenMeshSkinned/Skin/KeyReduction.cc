@@ -70,6 +70,64 @@ size_t count_keys(const std::vector<Clip>& clips) {
   return n;
 }
 
+Clip merge_key_frames(const Clip& clip, const Skeleton& skel, double threshold) {
+  std::vector<double> times;
+  for (const Channel& ch : clip.channels)
+    for (const auto* v : {&ch.translation_times, &ch.rotation_times, &ch.scale_times})
+      times.insert(times.end(), v->begin(), v->end());
+  std::sort(times.begin(), times.end());
+  times.erase(std::unique(times.begin(), times.end()), times.end());
+  if (times.size() < 3) return clip;
+  std::vector<int> depth(skel.size(), 0);
+  for (int j = 0; j < skel.size(); ++j)
+    if (skel.joints[j].parent >= 0) depth[j] = depth[skel.joints[j].parent] + 1;
+  const int h = std::max(1, skel.size() ? *std::max_element(depth.begin(), depth.end()) : 1);
+  auto euler = [&](double t) {
+    std::vector<Eigen::Vector3d> e;
+    for (const Eigen::Matrix4d& m : sample_locals(skel, clip, t))
+      e.push_back(Eigen::Matrix3d(m.block<3, 3>(0, 0)).eulerAngles(0, 1, 2));
+    return e;
+  };
+  auto energy = [&](const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b) {
+    double e = 0.0;
+    for (size_t j = 0; j < a.size(); ++j)
+      for (int k = 0; k < 3; ++k) {
+        const double d = std::abs(a[j][k] - b[j][k]);
+        e += double(h - depth[j]) / h * std::min(d, 2.0 * M_PI - d) / M_PI;
+      }
+    return e;
+  };
+  std::vector<double> kept = {times.front()};
+  std::vector<Eigen::Vector3d> last = euler(times.front()), here = euler(times[1]);
+  for (size_t i = 1; i + 1 < times.size(); ++i) {
+    std::vector<Eigen::Vector3d> next = euler(times[i + 1]);
+    // Merged when close to the last kept frame and to the next one: the last frame of a hold stays, so a
+    // run of duplicates goes without changing the motion.
+    if (!(energy(last, here) < threshold && energy(here, next) < threshold)) {
+      kept.push_back(times[i]);
+      last = here;
+    }
+    here = std::move(next);
+  }
+  kept.push_back(times.back());
+  auto keep = [&](std::vector<double>& t, auto& v) {
+    std::vector<double> nt;
+    std::remove_reference_t<decltype(v)> nv;
+    for (size_t i = 0; i < t.size(); ++i)
+      if (i == 0 || i + 1 == t.size() || std::binary_search(kept.begin(), kept.end(), t[i]))
+        nt.push_back(t[i]), nv.push_back(v[i]);
+    t.swap(nt);
+    v.swap(nv);
+  };
+  Clip out = clip;
+  for (Channel& ch : out.channels) {
+    keep(ch.translation_times, ch.translations);
+    keep(ch.rotation_times, ch.rotations);
+    keep(ch.scale_times, ch.scales);
+  }
+  return out;
+}
+
 std::vector<double> key_times_and_midpoints(const Clip& clip) {
   std::vector<double> t;
   for (const Channel& ch : clip.channels)

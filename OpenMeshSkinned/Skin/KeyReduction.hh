@@ -28,6 +28,19 @@ struct KeyTolerance {
 /// \p clip with the keys \p tol allows to drop removed (first and last key of every channel kept).
 Clip reduce_keys(const Clip& clip, const KeyTolerance& tol);
 
+/** The paper's motion LoD: the clip's key frames (every key time of any channel), each dropped when the
+ *  energy to move all joints from the last kept frame to it, and from it to the next frame — sum over
+ *  joints of rho(j) times the change of its three Euler angles, over pi, as in joint_energy() — is under
+ *  \p threshold (the last frame of a hold stays); the first and last frames stay, so the clip keeps its
+ *  duration. Channels keep their keys at the kept frames. */
+Clip merge_key_frames(const Clip& clip, const Skeleton& skel, double threshold);
+
+/// How reduce_clips_to_error() drops keys.
+enum class KeyReductionMethod {
+  Channels,  ///< reduce_keys(): each channel thinned where interpolation reproduces it (default)
+  Frames,    ///< merge_key_frames(): the paper's whole-frame merge
+};
+
 /// Keys over every channel of \p clips (translation, rotation and scale keys counted separately).
 size_t count_keys(const std::vector<Clip>& clips);
 
@@ -37,9 +50,10 @@ std::vector<double> key_times_and_midpoints(const Clip& clip);
 /** \p mesh's clips with as few keys as keep every vertex of \p mesh, posed by the reduced clips, within
  *  \p max_distance of where the full clips put it, at every key time and between keys. The tolerance is
  *  one scale s (rotation s radians, translation s x the skeleton's rest extent, scale s) found by
- *  bisection, the largest that passes. */
+ *  bisection, the largest that passes (for KeyReductionMethod::Frames, s is the energy threshold). */
 template <typename Mesh>
-std::vector<Clip> reduce_clips_to_error(const Mesh& mesh, double max_distance) {
+std::vector<Clip> reduce_clips_to_error(const Mesh& mesh, double max_distance,
+                                        KeyReductionMethod method = KeyReductionMethod::Channels) {
   const Skeleton& skel = skeleton(mesh);
   const std::vector<Clip>& full = clips(mesh);
   double extent = 0.0;
@@ -53,7 +67,9 @@ std::vector<Clip> reduce_clips_to_error(const Mesh& mesh, double max_distance) {
   }
   auto reduce = [&](double s) {
     std::vector<Clip> out;
-    for (const Clip& c : full) out.push_back(reduce_keys(c, KeyTolerance{s, s * extent, s}));
+    for (const Clip& c : full)
+      out.push_back(method == KeyReductionMethod::Frames ? merge_key_frames(c, skel, s)
+                                                         : reduce_keys(c, KeyTolerance{s, s * extent, s}));
     return out;
   };
   auto passes = [&](const std::vector<Clip>& reduced) {

@@ -33,6 +33,7 @@ struct Options {
   bool html_beside = false;     // --html-assets beside: the GLBs in a script next to the page
   double joint_guard = 0.0;     // --joint-guard TAU (0: off)
   double anim_error = 0.0;      // --anim-error E, % of the diagonal (0: clips kept whole)
+  bool anim_frames = false;     // --anim-method frames: the paper's whole-frame merge instead of channels
   std::vector<int> max_joints;  // --max-joints N or N1,N2,... one per LOD (empty: skeleton kept whole)
   double joint_energy = 0.0;    // --joint-energy E: minor joints under it go (0: none by energy)
 };

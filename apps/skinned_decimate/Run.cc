@@ -217,7 +217,9 @@ json run_character(const Mesh& mesh, const std::string& name, const Options& opt
         reduce_mesh_skeleton(lmesh, budget, opt.max_influences, true, opt.joint_energy);
       }
       if (opt.anim_error > 0.0)
-        clips(lmesh) = reduce_clips_to_error(lmesh, opt.anim_error / 100.0 * bbox_diagonal(mesh));
+        clips(lmesh) =
+            reduce_clips_to_error(lmesh, opt.anim_error / 100.0 * bbox_diagonal(mesh),
+                                  opt.anim_frames ? KeyReductionMethod::Frames : KeyReductionMethod::Channels);
       lod_frames.push_back(poses_at(skeleton(lmesh), clips(lmesh), times));
     }
   }

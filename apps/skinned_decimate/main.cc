@@ -82,6 +82,11 @@ int main(int argc, char** argv) {
                  "Motion LoD: drop every key frame whose loss moves no vertex of the LOD by more than E % of the "
                  "diagonal, in any frame of the clips (default: clips kept whole)")
       ->check(CLI::PositiveNumber);
+  std::string anim_method = "channels";
+  app.add_option("--anim-method", anim_method,
+                 "How --anim-error drops keys: channels (each channel where interpolation reproduces it; default) "
+                 "or frames (the paper's merge of whole key frames by joint energy)")
+      ->check(CLI::IsMember({"channels", "frames"}));
   app.add_flag("!--no-eval", opt.evaluate,
                "Skip measuring the error in held-out frames (batch use: the table shows triangles and time only)");
   try {
@@ -93,6 +98,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   opt.html_beside = assets == "beside";
+  opt.anim_frames = anim_method == "frames";
   opt.poses_given = app.count("--poses") > 0;
   opt.ratio_given = app.count("--ratio") > 0;
   opt.faces_given = app.count("--faces") > 0;
