@@ -195,3 +195,23 @@ TEST(Cli, MaxJointsWritesLodsWithTheReducedSkeletonThatStillPlayEveryClip) {
     EXPECT_EQ(m.animations.size(), 3u);
   }
 }
+
+TEST(Cli, TheFoldOverLimitIsRelaxedToComeCloserToTheTargetUnlessStrict) {
+  const auto d = scratch("fold");
+  nlohmann::json rep[2];
+  for (int i = 0; i < 2; ++i) {
+    const auto r = cli(wuson + " -o f" + std::to_string(i) + ".glb --faces 60 --no-eval --report f" +
+                           std::to_string(i) + ".json" + (i ? " --strict-fold" : ""),
+                       d);
+    ASSERT_EQ(r.code, 0) << r.out;
+    std::ifstream(d / ("f" + std::to_string(i) + ".json")) >> rep[i];
+    if (i == 0) {
+      EXPECT_NE(r.out.find("the fold-over limit was relaxed to"), std::string::npos) << r.out;
+    }
+  }
+  const auto &relaxed = rep[0]["lods"][0], &strict = rep[1]["lods"][0];
+  EXPECT_GT(relaxed["fold_limit_deg"].get<double>(), 90.0);
+  EXPECT_EQ(strict["fold_limit_deg"].get<double>(), 90.0);
+  EXPECT_LT(relaxed["faces"].get<size_t>(), strict["faces"].get<size_t>());
+  omsk_test::expect_valid_gltf((d / "f0.glb").string());
+}

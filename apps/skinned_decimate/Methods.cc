@@ -155,6 +155,23 @@ std::vector<std::pair<Lod, Mesh>> build_chain(Mesh mesh, const std::vector<size_
     for (auto fh : mesh.faces()) (void)fh, ++live;
     collapses += dec->decimate_to_faces(0, targets[i] + (mesh.n_faces() - live));
     Lod lod;
+    // Reach the requested count: when every collapse left folds a face by more than 90 degrees in some
+    // pose, allow a larger turn step by step (and say so), unless --strict-fold.
+    if (!opt.strict_fold && h.fold_over.is_valid()) {
+      auto live_faces = [&] {
+        size_t n = 0;
+        for (auto fh : mesh.faces()) (void)fh, ++n;
+        return n;
+      };
+      for (double angle : {120.0, 150.0, 175.0}) {
+        const size_t now = live_faces();
+        if (now <= targets[i]) break;
+        dec->module(h.fold_over).set_max_angle(angle);
+        collapses += dec->decimate_to_faces(0, targets[i] + (mesh.n_faces() - now));
+        lod.fold_limit = angle;
+      }
+      dec->module(h.fold_over).set_max_angle(90.0);
+    }
     lod.ratio = ratios[i];
     lod.target = targets[i];
     lod.seconds = std::chrono::duration<double>(Clock::now() - t0).count();

@@ -33,6 +33,7 @@ struct Lod {
   int max_influences = 0;
   size_t keys = 0;                    // key frames over its clips' channels (fewer with --anim-error)
   int joints = 0;                     // its skeleton's joints (fewer with --max-joints)
+  double fold_limit = 90.0;           // the largest face turn allowed to reach the target (degrees)
   bool evaluated = false;             // false with --no-eval
   double rms = 0.0, hausdorff = 0.0;  // % of the rest-pose bounding-box diagonal
   std::vector<float> vertex_error;    // per vertex, max over held-out frames, % of the diagonal (--html)

@@ -36,6 +36,7 @@ struct Options {
   bool anim_frames = false;     // --anim-method frames: the paper's whole-frame merge instead of channels
   std::vector<int> max_joints;  // --max-joints N or N1,N2,... one per LOD (empty: skeleton kept whole)
   double joint_energy = 0.0;    // --joint-energy E: minor joints under it go (0: none by energy)
+  bool strict_fold = false;     // --strict-fold: never relax the 90-degree fold-over limit
 };
 
 // Past this many example poses the schedule stops being a sample of the clips and becomes the clips.

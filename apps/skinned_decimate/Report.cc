@@ -39,6 +39,10 @@ void print_table(const std::string& title, const std::vector<std::pair<Lod, Mesh
               << (lod.evaluated ? fmt(lod.hausdorff, 4) : "-") << std::setw(8) << lod.joints << std::setw(8) << lod.keys
               << "\n";
   for (const auto& [lod, mesh] : chain)
+    if (lod.fold_limit > 90.0)
+      std::cout << "  ratio " << fmt(lod.ratio, 4) << ": the fold-over limit was relaxed to " << fmt(lod.fold_limit, 0)
+                << " degrees to come closer to the target (--strict-fold keeps 90)\n";
+  for (const auto& [lod, mesh] : chain)
     if (lod.faces > lod.target)
       std::cout << "  ratio " << fmt(lod.ratio, 4) << ": target of " << lod.target
                 << " triangles not reached; stopped at " << lod.faces
@@ -69,6 +73,7 @@ json lod_json(const Lod& lod, const std::vector<OpenMeshSkinned::Clip>& clips,
             {"seconds", lod.seconds},
             {"max_influences", lod.max_influences},
             {"joints", lod.joints},
+            {"fold_limit_deg", lod.fold_limit},
             {"keys", lod.keys},
             {"heldout_rms", lod.evaluated ? json(lod.rms) : json(nullptr)},
             {"heldout_hausdorff", lod.evaluated ? json(lod.hausdorff) : json(nullptr)},

@@ -87,6 +87,9 @@ int main(int argc, char** argv) {
                  "How --anim-error drops keys: channels (each channel where interpolation reproduces it; default) "
                  "or frames (the paper's merge of whole key frames by joint energy)")
       ->check(CLI::IsMember({"channels", "frames"}));
+  app.add_flag("--strict-fold", opt.strict_fold,
+               "Stop where every collapse would turn a face by more than 90 degrees in some pose (by default the "
+               "limit is relaxed to 120, 150, then 175 degrees to reach the target, and the table says so)");
   app.add_flag("!--no-eval", opt.evaluate,
                "Skip measuring the error in held-out frames (batch use: the table shows triangles and time only)");
   try {
