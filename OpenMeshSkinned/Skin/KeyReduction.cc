@@ -1,5 +1,7 @@
 #include "OpenMeshSkinned/Skin/KeyReduction.hh"
 
+#include "OpenMeshSkinned/Skin/SkeletonLod.hh"
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -72,35 +74,24 @@ size_t count_keys(const std::vector<Clip>& clips) {
 
 Clip merge_key_frames(const Clip& clip, const Skeleton& skel, double threshold) {
   std::vector<double> times;
-  for (const Channel& ch : clip.channels)
-    for (const auto* v : {&ch.translation_times, &ch.rotation_times, &ch.scale_times})
-      times.insert(times.end(), v->begin(), v->end());
-  std::sort(times.begin(), times.end());
-  times.erase(std::unique(times.begin(), times.end()), times.end());
+  for (const Channel& ch : clip.channels) add_key_times(ch, times);
   if (times.size() < 3) return clip;
-  std::vector<int> depth(skel.size(), 0);
-  for (int j = 0; j < skel.size(); ++j)
-    if (skel.joints[j].parent >= 0) depth[j] = depth[skel.joints[j].parent] + 1;
+  const std::vector<int> depth = joint_depths(skel);
   const int h = std::max(1, skel.size() ? *std::max_element(depth.begin(), depth.end()) : 1);
-  auto euler = [&](double t) {
-    std::vector<Eigen::Vector3d> e;
-    for (const Eigen::Matrix4d& m : sample_locals(skel, clip, t))
-      e.push_back(Eigen::Matrix3d(m.block<3, 3>(0, 0)).eulerAngles(0, 1, 2));
-    return e;
+  auto rotations = [&](double t) {
+    std::vector<Eigen::Matrix3d> r;
+    for (const Eigen::Matrix4d& m : sample_locals(skel, clip, t)) r.push_back(m.block<3, 3>(0, 0));
+    return r;
   };
-  auto energy = [&](const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b) {
+  auto energy = [&](const std::vector<Eigen::Matrix3d>& a, const std::vector<Eigen::Matrix3d>& b) {
     double e = 0.0;
-    for (size_t j = 0; j < a.size(); ++j)
-      for (int k = 0; k < 3; ++k) {
-        const double d = std::abs(a[j][k] - b[j][k]);
-        e += double(h - depth[j]) / h * std::min(d, 2.0 * M_PI - d) / M_PI;
-      }
+    for (size_t j = 0; j < a.size(); ++j) e += double(h - depth[j]) / h * euler_change(a[j], b[j]);
     return e;
   };
   std::vector<double> kept = {times.front()};
-  std::vector<Eigen::Vector3d> last = euler(times.front()), here = euler(times[1]);
+  std::vector<Eigen::Matrix3d> last = rotations(times.front()), here = rotations(times[1]);
   for (size_t i = 1; i + 1 < times.size(); ++i) {
-    std::vector<Eigen::Vector3d> next = euler(times[i + 1]);
+    std::vector<Eigen::Matrix3d> next = rotations(times[i + 1]);
     // Merged when close to the last kept frame and to the next one: the last frame of a hold stays, so a
     // run of duplicates goes without changing the motion.
     if (!(energy(last, here) < threshold && energy(here, next) < threshold)) {
@@ -130,11 +121,7 @@ Clip merge_key_frames(const Clip& clip, const Skeleton& skel, double threshold) 
 
 std::vector<double> key_times_and_midpoints(const Clip& clip) {
   std::vector<double> t;
-  for (const Channel& ch : clip.channels)
-    for (const auto* v : {&ch.translation_times, &ch.rotation_times, &ch.scale_times})
-      t.insert(t.end(), v->begin(), v->end());
-  std::sort(t.begin(), t.end());
-  t.erase(std::unique(t.begin(), t.end()), t.end());
+  for (const Channel& ch : clip.channels) add_key_times(ch, t);
   const size_t n = t.size();
   for (size_t i = 0; i + 1 < n; ++i) t.push_back(0.5 * (t[i] + t[i + 1]));
   std::sort(t.begin(), t.end());

@@ -147,4 +147,11 @@ std::vector<Pose> sample_poses_evenly(const Skeleton& skel, const Clip& clip, in
   return sample_poses_at(skel, clip, times);
 }
 
+void add_key_times(const Channel& ch, std::vector<double>& times) {
+  for (const auto* v : {&ch.translation_times, &ch.rotation_times, &ch.scale_times})
+    times.insert(times.end(), v->begin(), v->end());
+  std::sort(times.begin(), times.end());
+  times.erase(std::unique(times.begin(), times.end()), times.end());
+}
+
 }  // namespace OpenMeshSkinned

@@ -65,6 +65,10 @@ struct Clip {
   std::vector<MorphChannel> morph_channels;
 };
 
+/// Adds every key time of \p ch (translation, rotation and scale keys) to \p times, then sorts \p times and
+/// drops repeats.
+void add_key_times(const Channel& ch, std::vector<double>& times);
+
 /// One example pose: a skinning matrix per joint, relative to the bind pose, and the morph targets'
 /// weights (empty: all 0). Morph offsets are added to the rest position before skinning, as in glTF.
 struct Pose {

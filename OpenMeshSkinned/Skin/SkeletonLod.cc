@@ -8,13 +8,6 @@ namespace OpenMeshSkinned {
 
 namespace {
 
-std::vector<int> depths(const Skeleton& skel) {
-  std::vector<int> d(skel.size(), 0);
-  for (int j = 0; j < skel.size(); ++j)
-    if (skel.joints[j].parent >= 0) d[j] = d[skel.joints[j].parent] + 1;  // parents come first
-  return d;
-}
-
 std::vector<int> child_counts(const Skeleton& skel) {
   std::vector<int> c(skel.size(), 0);
   for (const Joint& j : skel.joints)
@@ -24,9 +17,26 @@ std::vector<int> child_counts(const Skeleton& skel) {
 
 }  // namespace
 
+std::vector<int> joint_depths(const Skeleton& skel) {
+  std::vector<int> d(skel.size(), 0);
+  for (int j = 0; j < skel.size(); ++j)
+    if (skel.joints[j].parent >= 0) d[j] = d[skel.joints[j].parent] + 1;  // parents come first
+  return d;
+}
+
+double euler_change(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
+  const Eigen::Vector3d ea = a.eulerAngles(0, 1, 2), eb = b.eulerAngles(0, 1, 2);
+  double change = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const double d = std::abs(eb[k] - ea[k]);
+    change += std::min(d, 2.0 * M_PI - d);  // the short way round
+  }
+  return change / M_PI;
+}
+
 std::vector<JointLabel> label_joints(const Skeleton& skel) {
   const int n = skel.size();
-  const std::vector<int> d = depths(skel), children = child_counts(skel);
+  const std::vector<int> d = joint_depths(skel), children = child_counts(skel);
   double avg_ngb = 0.0, avg_depth = 0.0;
   for (int j = 0; j < n; ++j) {
     avg_ngb += children[j] + (skel.joints[j].parent >= 0 ? 1 : 0);
@@ -50,23 +60,17 @@ std::vector<JointLabel> label_joints(const Skeleton& skel) {
 }
 
 std::vector<double> joint_energy(const Skeleton& skel, const std::vector<Clip>& clips) {
-  const std::vector<int> d = depths(skel);
+  const std::vector<int> d = joint_depths(skel);
   const int h = std::max(1, *std::max_element(d.begin(), d.end()));
   std::vector<double> e(skel.size(), 0.0);
   for (const Clip& clip : clips)
     for (const Channel& ch : clip.channels) {
       if (ch.joint < 0 || ch.joint >= skel.size()) continue;
       double variation = 0.0;
-      for (size_t b = 0; b + 1 < ch.rotations.size(); ++b) {
-        const Eigen::Vector3d r0 = ch.rotations[b].normalized().toRotationMatrix().eulerAngles(0, 1, 2);
-        const Eigen::Vector3d r1 = ch.rotations[b + 1].normalized().toRotationMatrix().eulerAngles(0, 1, 2);
-        for (int a = 0; a < 3; ++a) {
-          double delta = std::abs(r1[a] - r0[a]);
-          delta = std::min(delta, 2.0 * M_PI - delta);  // the short way round
-          variation += delta;
-        }
-      }
-      e[ch.joint] += double(h - d[ch.joint]) / h * variation / M_PI;
+      for (size_t b = 0; b + 1 < ch.rotations.size(); ++b)
+        variation += euler_change(ch.rotations[b].normalized().toRotationMatrix(),
+                                  ch.rotations[b + 1].normalized().toRotationMatrix());
+      e[ch.joint] += double(h - d[ch.joint]) / h * variation;
     }
   return e;
 }
@@ -143,16 +147,9 @@ SkeletonReduction reduce_skeleton(const Skeleton& skel, const std::vector<Clip>&
       }
       // Key times of the joint and the removed joints above it; the product of their locals at each.
       std::vector<double> times;
-      for (int x : baked[j]) {
-        if (!of[x]) continue;
-        for (const auto* t : {&of[x]->translation_times, &of[x]->rotation_times, &of[x]->scale_times})
-          times.insert(times.end(), t->begin(), t->end());
-      }
-      if (of[j])
-        for (const auto* t : {&of[j]->translation_times, &of[j]->rotation_times, &of[j]->scale_times})
-          times.insert(times.end(), t->begin(), t->end());
-      std::sort(times.begin(), times.end());
-      times.erase(std::unique(times.begin(), times.end()), times.end());
+      for (int x : baked[j])
+        if (of[x]) add_key_times(*of[x], times);
+      if (of[j]) add_key_times(*of[j], times);
       Channel ch;
       ch.joint = r.new_index[j];
       for (double t : times) {

@@ -17,6 +17,13 @@ namespace OpenMeshSkinned {
 
 enum class JointLabel { Root, EndEffector, Major, Extreme, Minor };
 
+/// Depth of every joint in its tree (roots 0).
+std::vector<int> joint_depths(const Skeleton& skel);
+
+/// The change between two rotations in the paper's terms: over the three Euler angles, each the short way
+/// round, summed and divided by pi (joint_energy() and merge_key_frames() both measure motion so).
+double euler_change(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b);
+
 /** The paper's labelling rules, in order: depth 0 -> root; no child -> end-effector; more than 1.9 x the
  *  average number of neighbours (parent and children) and shallower than the average depth -> major,
  *  deeper -> extreme; otherwise minor (the only removable kind). */

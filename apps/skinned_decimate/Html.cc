@@ -2,7 +2,7 @@
 
 #include <OpenMeshSkinned/IO/ExportGltf.hh>
 #include <OpenMeshSkinned/IO/IOError.hh>
-#include <OpenMeshSkinned/Skin/SkinProperties.hh>
+#include <OpenMeshSkinned/Skin/KeyReduction.hh>
 
 #include <fcntl.h>
 #include <sys/wait.h>
@@ -65,15 +65,11 @@ void add_view(HtmlSection& section, const std::string& label, const Mesh& mesh, 
   OpenMeshSkinned::export_gltf(copy, tmp.string());
   const std::string glb = read_file(tmp);
   fs::remove(tmp);
-  size_t keys = 0;  // key frames over every clip's channels (a LOD's animation cost besides its joints)
-  for (const OpenMeshSkinned::Clip& c : OpenMeshSkinned::clips(mesh))
-    for (const OpenMeshSkinned::Channel& ch : c.channels)
-      keys += ch.translation_times.size() + ch.rotation_times.size() + ch.scale_times.size();
   json v = {{"label", label},
             {"triangles", mesh.n_faces()},
             {"vertices", mesh.n_vertices()},
             {"joints", OpenMeshSkinned::skeleton(mesh).size()},
-            {"keys", keys},
+            {"keys", OpenMeshSkinned::count_keys(OpenMeshSkinned::clips(mesh))},
             {"max_influences", lod ? json(lod->max_influences) : json(nullptr)},
             {"rms", lod && lod->evaluated ? json(lod->rms) : json(nullptr)},
             {"hausdorff", lod && lod->evaluated ? json(lod->hausdorff) : json(nullptr)},

@@ -93,6 +93,13 @@ private:
   bool shown_ = false;
 };
 
+// Faces not deleted (n_faces() counts deleted ones until garbage collection).
+size_t live_faces(const Mesh& mesh) {
+  size_t n = 0;
+  for (auto fh : mesh.faces()) (void)fh, ++n;
+  return n;
+}
+
 }  // namespace
 
 int max_influences_of(const Mesh& mesh) {
@@ -151,20 +158,13 @@ std::vector<std::pair<Lod, Mesh>> build_chain(Mesh mesh, const std::vector<size_
     progress.set_done_before(collapses);
     // decimate_to_faces counts deleted faces too until garbage collection, which would also renumber the
     // vertices under the solver's feet: aim at the target plus the faces already deleted instead.
-    size_t live = 0;
-    for (auto fh : mesh.faces()) (void)fh, ++live;
-    collapses += dec->decimate_to_faces(0, targets[i] + (mesh.n_faces() - live));
+    collapses += dec->decimate_to_faces(0, targets[i] + (mesh.n_faces() - live_faces(mesh)));
     Lod lod;
     // Reach the requested count: when every collapse left folds a face by more than 90 degrees in some
     // pose, allow a larger turn step by step (and say so), unless --strict-fold.
     if (!opt.strict_fold && h.fold_over.is_valid()) {
-      auto live_faces = [&] {
-        size_t n = 0;
-        for (auto fh : mesh.faces()) (void)fh, ++n;
-        return n;
-      };
       for (double angle : {120.0, 150.0, 175.0}) {
-        const size_t now = live_faces();
+        const size_t now = live_faces(mesh);
         if (now <= targets[i]) break;
         dec->module(h.fold_over).set_max_angle(angle);
         collapses += dec->decimate_to_faces(0, targets[i] + (mesh.n_faces() - now));
