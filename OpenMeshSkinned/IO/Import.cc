@@ -2,6 +2,7 @@
 
 #include "OpenMeshSkinned/IO/GltfRepair.hh"
 #include "OpenMeshSkinned/IO/GltfValueCheck.hh"
+#include "OpenMeshSkinned/IO/ImportFrames.hh"
 #include "OpenMeshSkinned/IO/ImportGeometry.hh"
 #include "OpenMeshSkinned/IO/ImportMaterial.hh"
 #include "OpenMeshSkinned/IO/ImportScene.hh"
@@ -14,11 +15,14 @@
 
 #include <OpenMesh/Core/System/omstream.hh>
 
+#include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <sstream>
 
@@ -28,7 +32,9 @@ namespace {
 using namespace detail;
 
 // assimp's reading, its error made one line of a readable length: a reader may quote half the file back.
-const aiScene* read_scene(Assimp::Importer& importer, const std::string& path, const std::string& read_path) {
+const aiScene* read_scene(Assimp::Importer& importer, const std::string& path, const std::string& read_path,
+                          int frame) {
+  if (frame >= 0) importer.SetPropertyInteger(AI_CONFIG_IMPORT_GLOBAL_KEYFRAME, frame);
   // No PreTransformVertices or OptimizeGraph: both would destroy the skeleton we need.
   const unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
   const aiScene* scene = importer.ReadFile(read_path, flags);
@@ -50,6 +56,52 @@ const aiScene* read_scene(Assimp::Importer& importer, const std::string& path, c
   }
   if (stand_in) throw IOError(path + ": contains no mesh, only a skeleton and its animation (nothing to decimate)");
   return scene;
+}
+
+// ImportOptions::all_stored_frames and frame_files: the other frames' vertices as morph targets of the
+// first frame's meshes, which must match them mesh for mesh, vertex for vertex and face for face.
+void attach_frames(aiScene* scene, const std::string& path, const ImportOptions& opt) {
+  const size_t n = opt.all_stored_frames ? stored_frame_count(path) : opt.frame_files.size() + 1;
+  std::vector<std::vector<aiAnimMesh*>> added(scene->mNumMeshes);
+  for (size_t f = 1; f < n; ++f) {
+    const std::string file = opt.all_stored_frames ? path : opt.frame_files[f - 1];
+    const std::string what = opt.all_stored_frames ? path + ": frame " + std::to_string(f) : file;
+    Assimp::Importer other;
+    const aiScene* s = read_scene(other, file, file, opt.all_stored_frames ? int(f) : -1);
+    auto differs = [&](const std::string& how) {
+      return IOError(what + ": not the same mesh as the first frame (" + how +
+                     "): every frame must have the same vertices and faces");
+    };
+    if (s->mNumMeshes != scene->mNumMeshes) throw differs(std::to_string(s->mNumMeshes) + " meshes");
+    for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+      const aiMesh *a = scene->mMeshes[m], *b = s->mMeshes[m];
+      if (a->mNumVertices != b->mNumVertices || a->mNumFaces != b->mNumFaces)
+        throw differs("mesh " + std::to_string(m) + " has " + std::to_string(b->mNumVertices) + " vertices and " +
+                      std::to_string(b->mNumFaces) + " faces");
+      for (unsigned i = 0; i < a->mNumFaces; ++i)
+        if (a->mFaces[i].mNumIndices != b->mFaces[i].mNumIndices ||
+            !std::equal(a->mFaces[i].mIndices, a->mFaces[i].mIndices + a->mFaces[i].mNumIndices, b->mFaces[i].mIndices))
+          throw differs("face " + std::to_string(i) + " of mesh " + std::to_string(m) + " has other vertices");
+      auto* am = new aiAnimMesh();
+      added[m].push_back(am);
+      char name[32];
+      std::snprintf(name, sizeof name, "frame_%04zu", f);
+      am->mName = name;
+      am->mNumVertices = b->mNumVertices;
+      am->mVertices = new aiVector3D[b->mNumVertices];
+      std::copy(b->mVertices, b->mVertices + b->mNumVertices, am->mVertices);
+    }
+  }
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    aiMesh* a = scene->mMeshes[m];
+    if (added[m].empty()) continue;
+    auto** all = new aiAnimMesh*[a->mNumAnimMeshes + added[m].size()];
+    std::copy(a->mAnimMeshes, a->mAnimMeshes + a->mNumAnimMeshes, all);
+    std::copy(added[m].begin(), added[m].end(), all + a->mNumAnimMeshes);
+    delete[] a->mAnimMeshes;
+    a->mAnimMeshes = all;
+    a->mNumAnimMeshes += unsigned(added[m].size());
+  }
 }
 
 // Morph targets of every mesh instance, numbered one after the other; returns where each instance's start.
@@ -141,7 +193,8 @@ ImportReport detail::import_scene(const std::string& path, const std::string& re
   check_gltf_weights(read_path, path);
   const ReaderLog log;
   Assimp::Importer importer;
-  const aiScene* scene = read_scene(importer, path, read_path);
+  const aiScene* scene = read_scene(importer, path, read_path, opt.frame);
+  if (opt.all_stored_frames || !opt.frame_files.empty()) attach_frames(const_cast<aiScene*>(scene), path, opt);
   const SceneNodes sn(scene->mRootNode);
   const std::vector<MeshInstance> instances = mesh_instances(scene, sn);
   if (instances.empty()) throw IOError(path + ": contains no triangle mesh");

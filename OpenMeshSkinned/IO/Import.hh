@@ -28,6 +28,15 @@ struct ImportOptions {
   bool isolate = false;
   size_t memory_limit_mb = 8192;      ///< address space the isolated reader may use; 0 = no limit
   double time_limit_seconds = 300.0;  ///< wall-clock time the isolated reader may take; 0 = no limit
+  /** Vertex-animated formats (MD2, MD3, MDL) store whole frames of positions: which one to read (assimp
+   *  reads frame 0 when this is negative). import_frame_animation() reads them all. */
+  int frame = -1;
+  /** Read every frame as one mesh: each stored frame after the first (all_stored_frames, MD2/MD3/MDL) or
+   *  each of frame_files (the same mesh in other files) becomes a morph target of the first frame, named
+   *  "frame_0001", ... . Done before vertices are welded, so that two vertices are one only when they
+   *  coincide in every frame. import_frame_animation() sets these and adds the clip. */
+  bool all_stored_frames = false;
+  std::vector<std::string> frame_files;
 };
 
 /// What the importer did to the data, for the user to read.

@@ -1,0 +1,98 @@
+#include "OpenMeshSkinned/IO/ImportFrames.hh"
+
+#include "OpenMeshSkinned/Skin/FrameAnimation.hh"
+#include "OpenMeshSkinned/Skin/Morph.hh"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <regex>
+
+namespace OpenMeshSkinned {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+int32_t read_i32(const std::string& path, size_t offset) {
+  std::ifstream f(path, std::ios::binary);
+  unsigned char b[4] = {0, 0, 0, 0};
+  f.seekg(std::streamoff(offset));
+  f.read(reinterpret_cast<char*>(b), 4);
+  if (!f) return 0;
+  return int32_t(uint32_t(b[0]) | uint32_t(b[1]) << 8 | uint32_t(b[2]) << 16 | uint32_t(b[3]) << 24);
+}
+
+}  // namespace
+
+size_t stored_frame_count(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  char ident[4] = {0, 0, 0, 0};
+  f.read(ident, 4);
+  if (!f) return 1;
+  // Header layouts: id Software's md2.h / md3.h / modelgen.h (little-endian int32 fields).
+  int32_t n = 1;
+  if (std::memcmp(ident, "IDP2", 4) == 0)
+    n = read_i32(path, 40);  // MD2: num_frames
+  else if (std::memcmp(ident, "IDP3", 4) == 0)
+    n = read_i32(path, 76);  // MD3: after name[64] and flags
+  else if (std::memcmp(ident, "IDPO", 4) == 0)
+    n = read_i32(path, 68);  // MDL: after the skin and counts
+  return n > 0 ? size_t(n) : 1;
+}
+
+std::vector<std::string> numbered_sequence(const std::string& path) {
+  const fs::path p(path);
+  static const std::regex numbered(R"((.*?)(\d+))");
+  std::smatch m;
+  const std::string stem = p.stem().string();
+  if (!std::regex_match(stem, m, numbered)) return {path};
+  const std::string prefix = m[1].str(), ext = p.extension().string();
+  const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+  std::vector<std::pair<unsigned long long, std::string>> found;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    const std::string s = e.path().stem().string();
+    if (e.path().extension().string() != ext || s.size() <= prefix.size() || s.compare(0, prefix.size(), prefix) != 0)
+      continue;
+    const std::string digits = s.substr(prefix.size());
+    if (digits.size() > 18 || !std::all_of(digits.begin(), digits.end(), ::isdigit)) continue;
+    found.emplace_back(std::stoull(digits), (p.parent_path() / e.path().filename()).string());
+  }
+  if (found.empty()) return {path};
+  std::sort(found.begin(), found.end());
+  std::vector<std::string> out;
+  for (auto& [n, s] : found) out.push_back(s);
+  return out;
+}
+
+ImportReport import_frame_animation(const std::vector<std::string>& files, SkinnedMesh& mesh, const ImportOptions& opt,
+                                    double fps) {
+  if (files.empty()) throw IOError("no frame to read");
+  if (!(fps > 0.0)) throw IOError("the frame rate must be positive");
+  const bool stored = files.size() == 1;
+  const size_t n = stored ? stored_frame_count(files[0]) : files.size();
+  if (n < 2)
+    throw IOError(files[0] + ": one frame only: not an animation (give a numbered sequence, or an MD2/MD3/MDL file)");
+  ImportOptions o = opt;
+  o.all_stored_frames = stored;
+  if (!stored) o.frame_files.assign(files.begin() + 1, files.end());
+  ImportReport rep = import_skinned(files[0], mesh, o);
+  if (morph_targets(mesh).size() + 1 != n)
+    throw IOError(files[0] + ": has morph targets of its own: a frame animation cannot be read from it");
+  std::vector<double> times;
+  for (size_t f = 0; f < n; ++f) times.push_back(double(f) / fps);
+  set_frame_times(mesh, times);
+  rep.clips = 1;
+  rep.morph_targets = n - 1;
+  rep.warnings.push_back("read " + std::to_string(n) + " frames as one clip at " +
+                         std::to_string(int(std::lround(fps))) +
+                         " frames per second (frame 0 is the rest shape, each later frame a morph target)");
+  return rep;
+}
+
+}  // namespace OpenMeshSkinned
