@@ -1,0 +1,282 @@
+#include "OpenMeshSkinned/Deform/NearRigidSegmentation.hh"
+
+#include <Eigen/Sparse>
+
+#include <algorithm>
+#include <functional>
+#include <limits>
+#include <map>
+#include <queue>
+
+namespace OpenMeshSkinned {
+
+namespace {
+
+struct Arc {
+  int to;
+  double dis;  // eq. 5
+};
+
+struct DualGraph {
+  std::vector<std::vector<Arc>> arcs;  // by face index
+  std::vector<double> area;
+};
+
+DualGraph dual_graph(const SkinnedMesh& mesh, const FramePoints& ref, const FaceGradients<SkinnedMesh>& g,
+                     double delta) {
+  const std::vector<double> D = deformation_distances(mesh, ref, g, true);
+  double sum_geod = 0.0, sum_d = 0.0;
+  size_t n = 0;
+  for (auto eh : mesh.edges())
+    if (!mesh.is_boundary(eh)) {
+      sum_geod += centroid_distance(mesh, ref, mesh.face_handle(mesh.halfedge_handle(eh, 0)),
+                                    mesh.face_handle(mesh.halfedge_handle(eh, 1)));
+      sum_d += D[eh.idx()];
+      ++n;
+    }
+  const double avg_geod = n && sum_geod > 0.0 ? sum_geod / n : 1.0;
+  const double avg_d = n ? sum_d / n : 0.0;
+  DualGraph G;
+  G.arcs.resize(mesh.n_faces());
+  G.area.assign(mesh.n_faces(), 0.0);
+  for (auto fh : mesh.faces()) {
+    auto fv = mesh.cfv_iter(fh);
+    const Eigen::Vector3d& a = ref[(fv++)->idx()];
+    const Eigen::Vector3d& b = ref[(fv++)->idx()];
+    const Eigen::Vector3d& c = ref[fv->idx()];
+    G.area[fh.idx()] = 0.5 * (b - a).cross(c - a).norm();
+  }
+  for (auto eh : mesh.edges()) {
+    if (mesh.is_boundary(eh)) continue;
+    const auto fa = mesh.face_handle(mesh.halfedge_handle(eh, 0)), fb = mesh.face_handle(mesh.halfedge_handle(eh, 1));
+    const double geod = centroid_distance(mesh, ref, fa, fb);
+    const double dis = delta * geod / avg_geod + (avg_d > 0.0 ? (1.0 - delta) * D[eh.idx()] / avg_d : 0.0);
+    G.arcs[fa.idx()].push_back({fb.idx(), dis});
+    G.arcs[fb.idx()].push_back({fa.idx(), dis});
+  }
+  return G;
+}
+
+// Shortest distances from \p sources; \p origin[f] = the source that reaches f first (-1: unreachable).
+std::vector<double> shortest_paths(const DualGraph& G, const std::vector<int>& sources,
+                                   std::vector<int>* origin = nullptr) {
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> dist(G.arcs.size(), inf);
+  if (origin) origin->assign(G.arcs.size(), -1);
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> q;
+  for (int s : sources) {
+    dist[s] = 0.0;
+    if (origin) (*origin)[s] = s;
+    q.push({0.0, s});
+  }
+  while (!q.empty()) {
+    const auto [d, f] = q.top();
+    q.pop();
+    if (d > dist[f]) continue;
+    for (const Arc& a : G.arcs[f])
+      if (d + a.dis < dist[a.to]) {
+        dist[a.to] = d + a.dis;
+        if (origin) (*origin)[a.to] = (*origin)[f];
+        q.push({dist[a.to], a.to});
+      }
+  }
+  return dist;
+}
+
+// The influence region of feature face \p p: the faces of B around it where the harmonic field that is 1 at
+// p and 0 on A reaches 0.01 (conductance 1 / Dis, so that a bending edge holds the field back).
+std::vector<int> influence_region(const DualGraph& G, const std::vector<char>& in_a, int p) {
+  std::vector<int> comp = {p}, index(G.arcs.size(), -1);
+  index[p] = 0;
+  bool touches_a = false;
+  for (size_t i = 0; i < comp.size(); ++i)
+    for (const Arc& a : G.arcs[comp[i]]) {
+      if (in_a[a.to])
+        touches_a = true;
+      else if (index[a.to] < 0)
+        index[a.to] = int(comp.size()), comp.push_back(a.to);
+    }
+  if (!touches_a || comp.size() == 1) return comp;
+  const long n = long(comp.size()) - 1;  // unknowns: comp without p
+  std::vector<Eigen::Triplet<double>> t;
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
+  for (size_t i = 1; i < comp.size(); ++i) {
+    double diag = 0.0;
+    for (const Arc& a : G.arcs[comp[i]]) {
+      const double w = 1.0 / std::max(a.dis, 1e-12);
+      diag += w;
+      if (a.to == p)
+        rhs[long(i - 1)] += w;
+      else if (!in_a[a.to])
+        t.emplace_back(long(i - 1), index[a.to] - 1, -w);
+    }
+    t.emplace_back(long(i - 1), long(i - 1), diag);
+  }
+  Eigen::SparseMatrix<double> L(n, n);
+  L.setFromTriplets(t.begin(), t.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(L);
+  const Eigen::VectorXd u = solver.solve(rhs);
+  std::vector<int> region = {p};
+  for (size_t i = 1; i < comp.size(); ++i)
+    if (solver.info() != Eigen::Success || u[long(i - 1)] >= 0.01) region.push_back(comp[i]);
+  return region;
+}
+
+// Area-weighted average deformation gradient of \p faces, per frame (Lee 3.2: a region's deformation).
+std::vector<Eigen::Matrix3d> average_gradient(const FaceGradients<SkinnedMesh>& g, const DualGraph& G,
+                                              const std::vector<int>& faces, double* area_out) {
+  std::vector<Eigen::Matrix3d> N(g.M.size(), Eigen::Matrix3d::Zero());
+  double area = 0.0;
+  for (int f : faces) {
+    if (!g.valid[f]) continue;
+    area += G.area[f];
+    for (size_t t = 0; t < g.M.size(); ++t) N[t] += G.area[f] * g.M[t][f];
+  }
+  for (auto& m : N) m = area > 0.0 ? Eigen::Matrix3d(m / area) : Eigen::Matrix3d::Identity();
+  if (area_out) *area_out = area;
+  return N;
+}
+
+// Connected pieces of the faces labelled \p label (neighbours across edges).
+std::vector<std::vector<int>> pieces(const DualGraph& G, const std::vector<int>& part, int label) {
+  std::vector<std::vector<int>> out;
+  std::vector<char> seen(part.size(), 0);
+  for (size_t f = 0; f < part.size(); ++f) {
+    if (part[f] != label || seen[f]) continue;
+    out.emplace_back(1, int(f));
+    seen[f] = 1;
+    for (size_t i = 0; i < out.back().size(); ++i)
+      for (const Arc& a : G.arcs[out.back()[i]])
+        if (part[a.to] == label && !seen[a.to]) seen[a.to] = 1, out.back().push_back(a.to);
+  }
+  return out;
+}
+
+}  // namespace
+
+Segmentation segment_near_rigid(const SkinnedMesh& mesh, const FramePoints& ref, const std::vector<FramePoints>& frames,
+                                const SegmentationSettings& s) {
+  const FaceGradients<SkinnedMesh> g(mesh, ref, frames);
+  const DualGraph G = dual_graph(mesh, ref, g, s.delta);
+  const size_t nf = mesh.n_faces();
+  double total_area = 0.0;
+  for (double a : G.area) total_area += a;
+
+  // 3.2: feature faces and the parts they start.
+  std::vector<char> in_a(nf, 0);
+  for (size_t f = 0; f < nf; ++f)
+    for (const Arc& a : G.arcs[f])
+      if (a.dis > s.epsilon) in_a[f] = 1;
+  Segmentation out;
+  std::vector<int> feature_part;
+  std::vector<std::vector<Eigen::Matrix3d>> part_gradient;
+  std::vector<double> part_area;
+  for (size_t round = 0; round < nf; ++round) {
+    std::vector<int> a_faces;
+    for (size_t f = 0; f < nf; ++f)
+      if (in_a[f]) a_faces.push_back(int(f));
+    if (a_faces.size() == nf) break;
+    int p = -1;
+    if (a_faces.empty()) {
+      p = 0;  // nothing bends: any face starts the first part
+    } else {
+      const std::vector<double> d = shortest_paths(G, a_faces);
+      double best = -1.0;
+      for (size_t f = 0; f < nf; ++f) {
+        // A piece of B cut off from A entirely is infinitely far: it is taken first.
+        const double df = std::isinf(d[f]) ? std::numeric_limits<double>::max() : d[f];
+        if (!in_a[f] && df > best) best = df, p = int(f);
+      }
+    }
+    const std::vector<int> R = influence_region(G, in_a, p);
+    double area = 0.0;
+    for (int f : R) area += G.area[f];
+    if (area < s.min_region_area * total_area && !out.feature_faces.empty()) break;
+    double r_area = 0.0;
+    const std::vector<Eigen::Matrix3d> N = average_gradient(g, G, R, &r_area);
+    int join = -1;
+    for (size_t k = 0; k < part_gradient.size() && join < 0; ++k) {
+      double worst = 0.0;
+      for (size_t t = 0; t < N.size(); ++t) worst = std::max(worst, (N[t] - part_gradient[k][t]).squaredNorm());
+      if (worst <= s.gamma) join = int(k);
+    }
+    if (join < 0) {
+      join = int(part_gradient.size());
+      part_gradient.push_back(N);
+      part_area.push_back(r_area);
+    } else if (r_area > 0.0) {
+      const double w = part_area[join] + r_area;
+      for (size_t t = 0; t < N.size(); ++t)
+        part_gradient[join][t] = (part_area[join] * part_gradient[join][t] + r_area * N[t]) / w;
+      part_area[join] = w;
+    }
+    out.feature_faces.push_back(p);
+    feature_part.push_back(join);
+    for (int f : R) in_a[f] = 1;
+  }
+  if (out.feature_faces.empty()) {
+    out.feature_faces.push_back(0);
+    feature_part.push_back(0);
+  }
+
+  // 3.3: nearest feature face (eq. 6); a part in pieces is split (pieces with feature faces) or absorbed.
+  std::vector<int> part(nf, 0);
+  for (int iter = 0; iter < 10; ++iter) {
+    std::vector<int> origin;
+    shortest_paths(G, out.feature_faces, &origin);
+    std::map<int, int> part_of_feature;
+    for (size_t i = 0; i < out.feature_faces.size(); ++i) part_of_feature[out.feature_faces[i]] = feature_part[i];
+    for (size_t f = 0; f < nf; ++f) part[f] = origin[f] < 0 ? -1 : part_of_feature[origin[f]];
+    bool split = false;
+    const int n_parts = *std::max_element(feature_part.begin(), feature_part.end()) + 1;
+    for (int label = 0; label < n_parts; ++label) {
+      const auto ps = pieces(G, part, label);
+      bool first_with_features = true;
+      for (const auto& piece : ps) {
+        std::vector<size_t> features;
+        for (size_t i = 0; i < out.feature_faces.size(); ++i)
+          if (std::find(piece.begin(), piece.end(), out.feature_faces[i]) != piece.end()) features.push_back(i);
+        if (features.empty()) {
+          std::map<int, int> votes;
+          for (int f : piece)
+            for (const Arc& a : G.arcs[f])
+              if (part[a.to] != label && part[a.to] >= 0) ++votes[part[a.to]];
+          if (votes.empty()) continue;
+          const int to =
+              std::max_element(votes.begin(), votes.end(), [](auto& x, auto& y) { return x.second < y.second; })->first;
+          for (int f : piece) part[f] = to;
+        } else if (!first_with_features) {
+          const int fresh = *std::max_element(feature_part.begin(), feature_part.end()) + 1;
+          for (size_t i : features) feature_part[i] = fresh;
+          split = true;
+        } else {
+          first_with_features = false;
+        }
+      }
+    }
+    if (!split) break;
+  }
+  // Faces no feature face reaches (a piece of the mesh with none) form parts of their own.
+  std::map<int, int> compact;
+  for (size_t f = 0; f < nf; ++f) {
+    if (part[f] < 0) {
+      const int fresh = -2 - int(f);
+      for (const auto& piece : pieces(G, part, -1))
+        if (std::find(piece.begin(), piece.end(), int(f)) != piece.end())
+          for (int x : piece) part[x] = fresh;
+    }
+    if (!compact.count(part[f])) compact[part[f]] = int(compact.size());
+  }
+  // Labels in order of first appearance, so that equal segmentations compare equal.
+  std::map<int, int> order;
+  out.part.assign(nf, 0);
+  for (size_t f = 0; f < nf; ++f) {
+    if (!order.count(part[f])) order[part[f]] = int(order.size());
+    out.part[f] = order[part[f]];
+  }
+  out.parts = int(order.size());
+  return out;
+}
+
+}  // namespace OpenMeshSkinned

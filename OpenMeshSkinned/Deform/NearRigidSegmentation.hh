@@ -1,0 +1,51 @@
+#pragma once
+/** \file NearRigidSegmentation.hh
+ *  Lee et al., "Segmenting a deforming mesh into near-rigid components": faces are split into parts
+ *  that each move (nearly) by one affine map over the whole animation, with the cuts in the regions that
+ *  bend.
+ *
+ *  What is taken from the paper:
+ *  - the dual graph (faces, edges between neighbours) with the combined distance of eq. 5,
+ *    Dis = delta Geod / avg(Geod) + (1 - delta) D / avg(D), D being the deformation distance of eq. 4;
+ *  - the feature faces (3.2): set A = faces with a neighbour farther than epsilon, B = the rest; repeatedly
+ *    the face of B farthest from A is a feature face, its influence region R is where the harmonic field
+ *    (1 at the feature face, 0 on A) is at least 0.01, R joins an existing part when the average
+ *    deformation gradients of the two are within gamma (squared Frobenius, worst frame) and otherwise
+ *    starts a new part, and R moves to A; until R's area is under min_region_area of the whole;
+ *  - the clustering of eq. 6: every face goes to the part of its nearest feature face (shortest paths on
+ *    the dual graph), and a part that falls apart into disconnected pieces (3.3, Fig. 4) is split: pieces
+ *    holding feature faces become parts of their own, pieces without one join the neighbour they share
+ *    most edges with.
+ *
+ *  Left out, and why: eq. 7's refinement by the average distance to all of a part's faces needs all-pairs
+ *  shortest paths (the paper's own memory limit: F^2 distances), and the min-cut smoothing of the
+ *  boundaries (3.4) is cosmetic; the cuts already run through the bending regions, which is what the
+ *  decimation and the tests rely on. Shortest paths from the feature faces replace the all-pairs table:
+ *  the same eq. 6 at O(F log F) per feature face.
+ */
+
+#include "OpenMeshSkinned/Deform/DeformationAnalysis.hh"
+#include "OpenMeshSkinned/Mesh/SkinnedMesh.hh"
+
+#include <vector>
+
+namespace OpenMeshSkinned {
+
+struct SegmentationSettings {
+  double delta = 0.15;            ///< eq. 5: share of the geodesic term (the paper: 0.1 to 0.2)
+  double epsilon = 0.5;           ///< set A: a face with a neighbour farther than this (the paper: 0.3 to 0.8)
+  double gamma = 1.0;             ///< merge threshold on average gradients (the paper: 0.4 to 1.6)
+  double min_region_area = 0.01;  ///< stop when an influence region has less of the total area
+};
+
+struct Segmentation {
+  std::vector<int> part;  ///< by face index, 0 .. parts - 1
+  int parts = 0;
+  std::vector<int> feature_faces;  ///< face indices
+};
+
+/// Segments \p mesh over \p frames (positions by vertex index), \p ref being the reference frame.
+Segmentation segment_near_rigid(const SkinnedMesh& mesh, const FramePoints& ref, const std::vector<FramePoints>& frames,
+                                const SegmentationSettings& s = {});
+
+}  // namespace OpenMeshSkinned
