@@ -47,3 +47,28 @@ TEST(PoseSchedule, RejectsBadRequests) {
   EXPECT_THROW(make_pose_schedule(two_clips(), 2, 5), std::invalid_argument);
   EXPECT_THROW(make_pose_schedule({}, 2, -1), std::invalid_argument);
 }
+
+TEST(PoseSchedule, FrameAnimationsLearnFromAndAreJudgedOnStoredFramesOnly) {
+  std::vector<double> frames;
+  for (int f = 0; f < 11; ++f) frames.push_back(0.1 * f);
+  Clip clip;
+  clip.duration = 1.0;
+  PoseSchedule s = make_pose_schedule({clip}, 4, 0);  // examples 0, 1/3, 2/3, 1; held out at 1/6, 1/2, 5/6
+  snap_to_frames(s, frames);
+  std::vector<double> ex, held;
+  for (const auto& t : s.examples) ex.push_back(t.time);
+  for (const auto& t : s.held_out) held.push_back(t.time);
+  ASSERT_EQ(ex.size(), 4u);
+  EXPECT_NEAR(ex[1], 0.3, 1e-12);
+  EXPECT_NEAR(ex[2], 0.7, 1e-12);
+  ASSERT_EQ(held.size(), 3u);
+  for (double h : held) {
+    EXPECT_NEAR(std::fmod(h * 10.0 + 1e-9, 1.0), 0.0, 1e-6) << h << " is not a stored frame";
+    for (double e : ex) EXPECT_GT(std::abs(h - e), 1e-9) << h << " is also an example";
+  }
+  // More examples than frames: each frame once, none left to hold out.
+  PoseSchedule dense = make_pose_schedule({clip}, 40, 0);
+  snap_to_frames(dense, {0.0, 0.5, 1.0});
+  EXPECT_EQ(dense.examples.size(), 3u);
+  EXPECT_TRUE(dense.held_out.empty());
+}

@@ -1,6 +1,7 @@
 #include "OpenMeshSkinned/Skin/PoseSchedule.hh"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace OpenMeshSkinned {
@@ -55,6 +56,32 @@ PoseSchedule make_pose_schedule(const std::vector<Clip>& clips, int k, int clip_
   }
   s.held_out = thin(s.held_out, max_held_out);
   return s;
+}
+
+void snap_to_frames(PoseSchedule& s, const std::vector<double>& frame_times) {
+  if (frame_times.empty()) return;
+  auto nearest = [&](double t, const std::vector<char>& taken) {
+    long best = -1;
+    for (size_t f = 0; f < frame_times.size(); ++f)
+      if (!taken[f] && (best < 0 || std::abs(frame_times[f] - t) < std::abs(frame_times[size_t(best)] - t)))
+        best = long(f);
+    return best;
+  };
+  std::vector<char> none(frame_times.size(), 0), example(frame_times.size(), 0), held(frame_times.size(), 0);
+  std::vector<PoseTime> examples, held_out;
+  for (const PoseTime& t : s.examples) {
+    const long f = nearest(t.time, none);
+    if (!example[size_t(f)]) examples.push_back({t.clip, frame_times[size_t(f)]});
+    example[size_t(f)] = 1;
+  }
+  for (const PoseTime& t : s.held_out) {
+    const long f = nearest(t.time, example);
+    if (f < 0 || held[size_t(f)]) continue;
+    held[size_t(f)] = 1;
+    held_out.push_back({t.clip, frame_times[size_t(f)]});
+  }
+  s.examples = std::move(examples);
+  s.held_out = std::move(held_out);
 }
 
 std::vector<Pose> poses_at(const Skeleton& skel, const std::vector<Clip>& clips, const std::vector<PoseTime>& times) {

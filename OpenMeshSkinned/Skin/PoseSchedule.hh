@@ -32,6 +32,12 @@ struct PoseSchedule {
 /// index out of range, or no clips.
 PoseSchedule make_pose_schedule(const std::vector<Clip>& clips, int k, int clip_index, size_t max_held_out = 16);
 
+/** For a frame animation (stored frames at \p frame_times, one clip): every example moved to the nearest
+ *  stored frame, duplicates dropped; every held-out frame moved to the nearest stored frame that is not an
+ *  example (dropped when there is none), duplicates dropped. So that the decimater learns from, and is
+ *  judged on, frames that exist, never the blend between two. */
+void snap_to_frames(PoseSchedule& s, const std::vector<double>& frame_times);
+
 /// The poses at the given frames.
 std::vector<Pose> poses_at(const Skeleton& skel, const std::vector<Clip>& clips, const std::vector<PoseTime>& times);
 

@@ -1,0 +1,30 @@
+#pragma once
+/** \file PoseSelection.hh
+ *  Choosing the example poses the decimater learns from with the report's key-frame GA instead of at even
+ *  times: the K frames from which linear interpolation rebuilds all the others best are the ones that
+ *  carry the animation's extremes. Works on frame animations and on skinned clips alike (frames are
+ *  vertex positions, morph offsets and skin applied).
+ */
+
+#include "OpenMeshSkinned/Deform/KeyframeGA.hh"
+#include "OpenMeshSkinned/Mesh/SkinnedMesh.hh"
+#include "OpenMeshSkinned/Skin/PoseSchedule.hh"
+
+#include <vector>
+
+namespace OpenMeshSkinned {
+
+/** The frames to choose from: every stored frame of a frame animation, or every clip sampled \p fps times
+ *  a second (both ends included), laid end to end in clip order; frames within half a step of a
+ *  \p held_out frame are left out, so that the held-out frames stay unseen. */
+std::vector<PoseTime> candidate_frames(const SkinnedMesh& mesh, const std::vector<PoseTime>& held_out,
+                                       double fps = 30.0);
+
+/** \p k of the \p candidates (k >= 2: the first and the last are always among them) chosen by
+ *  select_keyframes_ga() on the posed positions of at most \p max_vertices vertices (evenly strided: the
+ *  fitness needs the motion, not every vertex). Times are taken as laid end to end, so a clip's last frame
+ *  and the next clip's first count as neighbours. */
+std::vector<PoseTime> select_poses_ga(const SkinnedMesh& mesh, const std::vector<PoseTime>& candidates, size_t k,
+                                      size_t max_vertices = 2000, const KeyframeGaSettings& settings = {});
+
+}  // namespace OpenMeshSkinned

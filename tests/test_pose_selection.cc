@@ -1,0 +1,53 @@
+// Example poses chosen by the key-frame GA: they rebuild the unseen frames better than even spacing.
+#include "helpers.hh"
+
+#include <OpenMeshSkinned/Deform/PoseSelection.hh>
+#include <OpenMeshSkinned/Skin/FrameAnimation.hh>
+
+using namespace OpenMeshSkinned;
+using omsk_test::Mesh;
+
+namespace {
+
+// The knee bends fast and then holds: frame f bends by 90 * min(1, 3 f / 40) degrees.
+Mesh bend_then_hold() {
+  Mesh skinned = make_bending_cylinder(8, 16);
+  const Clip& bend = clips(skinned)[0];
+  std::vector<FramePositions> frames;
+  std::vector<double> times;
+  for (int f = 0; f <= 40; ++f) {
+    times.push_back(f / 40.0);
+    frames.push_back(skin_positions(skinned, sample_pose(skeleton(skinned), bend, std::min(1.0, 3.0 * f / 40.0))));
+  }
+  Mesh mesh = skinned;
+  const auto h = influences_handle(mesh);
+  for (auto v : mesh.vertices()) mesh.property(h, v) = Influences::rigid(0);
+  set_frame_animation(mesh, frames, times);
+  return mesh;
+}
+
+}  // namespace
+
+TEST(PoseSelection, CandidatesAreStoredFramesThatAreNotHeldOut) {
+  const Mesh mesh = bend_then_hold();
+  const auto c = candidate_frames(mesh, {{0, 0.5}, {0, 0.75}});
+  EXPECT_EQ(c.size(), 39u);
+  for (const auto& t : c) EXPECT_TRUE(std::abs(t.time - 0.5) > 1e-9 && std::abs(t.time - 0.75) > 1e-9);
+  // A skinned clip is sampled: the leg's one-second bend at 30 frames a second.
+  const Mesh leg = make_bending_cylinder(8, 16);
+  EXPECT_EQ(candidate_frames(leg, {}).size(), 31u);
+}
+
+TEST(PoseSelection, TheGaPutsTheExamplesWhereTheMotionIs) {
+  const Mesh mesh = bend_then_hold();
+  const auto candidates = candidate_frames(mesh, {});
+  const auto chosen = select_poses_ga(mesh, candidates, 4);
+  ASSERT_EQ(chosen.size(), 4u);
+  EXPECT_DOUBLE_EQ(chosen.front().time, 0.0);
+  EXPECT_DOUBLE_EQ(chosen.back().time, 1.0);
+  // The bend ends at frame 13.3: a key there rebuilds the hold exactly; even spacing (0, 1/3, 2/3, 1) cannot.
+  bool at_end_of_bend = false;
+  for (const auto& t : chosen) at_end_of_bend |= std::abs(t.time * 40.0 - 13.3) < 1.0;
+  EXPECT_TRUE(at_end_of_bend);
+  EXPECT_THROW(select_poses_ga(mesh, {candidates[0]}, 2), std::invalid_argument);
+}
