@@ -26,9 +26,9 @@ TEST(ModFrameQuadric, BeatsTheRestShapeQuadricsInFramesItNeverSaw) {
   }
 }
 
-TEST(ModFrameQuadric, SurvivorsKeepTheirTrajectories) {
+TEST(ModFrameQuadric, WithoutPlacementSurvivorsKeepTheirTrajectories) {
   const Mesh mesh = frame_leg();
-  const Mesh lod = decimate_frames<ModFrameQuadricT>(mesh, 300, [](auto&) {});
+  const Mesh lod = decimate_frames<ModFrameQuadricT>(mesh, 300, [](auto& m) { m.set_placement(false); });
   // Every LOD vertex is an input vertex, with its own position in every stored frame.
   const size_t F = frame_times(mesh).size();
   std::vector<FramePositions> in, out;
@@ -39,6 +39,27 @@ TEST(ModFrameQuadric, SurvivorsKeepTheirTrajectories) {
       if ((in[0][u.idx()] - out[0][v.idx()]).norm() < 1e-12) match = u.idx();
     ASSERT_LT(match, mesh.n_vertices());
     for (size_t f = 0; f < F; ++f) EXPECT_LT((in[f][match] - out[f][v.idx()]).norm(), 1e-6);
+  }
+}
+
+TEST(ModFrameQuadric, PlacedVerticesMoveWithTheSurfaceInEveryStoredFrame) {
+  const Mesh mesh = frame_leg();
+  const Mesh lod = decimate_frames<ModFrameQuadricT>(mesh, 600, [](auto&) {});
+  size_t moved = 0;
+  for (auto v : lod.vertices()) {
+    bool is_input = false;
+    for (auto u : mesh.vertices()) is_input |= (mesh.point(u) - lod.point(v)).norm() < 1e-12;
+    moved += !is_input;
+  }
+  EXPECT_GT(moved, 20u);
+  // In the frames it learnt from and in the others, every LOD vertex stays on the posed input's surface.
+  const double diag = bbox_diagonal(mesh);
+  for (size_t f = 0; f < frame_times(mesh).size(); ++f) {
+    const Pose pose = sample_pose(skeleton(mesh), clips(mesh)[0], frame_times(mesh)[f]);
+    const MeasuredSurface surface(posed_soup(mesh, pose), 1000, 1);
+    double worst = 0.0;
+    for (const auto& p : posed_soup(lod, pose).points) worst = std::max(worst, surface.distance(p));
+    EXPECT_LT(worst / diag, 2e-3) << "frame " << f;
   }
 }
 

@@ -10,10 +10,11 @@
 namespace OpenMeshSkinned {
 
 /** Adds to \p quadric(v, j) the area-weighted planes of v's faces in configuration j (positions
- *  \p pos(v, j)), for j in [0, n_poses), plus, at open borders, a plane through the border edge
- *  perpendicular to its face, weighted by the squared edge length, so that borders do not shrink away. */
-template <typename Mesh, typename Pos, typename Quadric>
-void accumulate_quadrics(const Mesh& mesh, int n_poses, Pos pos, Quadric quadric) {
+ *  \p pos(v, j)), for j in [0, n_poses), each also weighted by \p face_weight(face handle), plus, at open
+ *  borders, a plane through the border edge perpendicular to its face, weighted by the squared edge length
+ *  (and its face's weight), so that borders do not shrink away. */
+template <typename Mesh, typename Pos, typename Quadric, typename FaceWeight>
+void accumulate_quadrics(const Mesh& mesh, int n_poses, Pos pos, Quadric quadric, FaceWeight face_weight) {
   using VH = typename Mesh::VertexHandle;
   for (auto fh : mesh.faces()) {
     auto fv = mesh.cfv_iter(fh);
@@ -24,7 +25,7 @@ void accumulate_quadrics(const Mesh& mesh, int n_poses, Pos pos, Quadric quadric
       const double len = n.norm();
       if (len <= 0.0) continue;
       n /= len;
-      const PoseQuadric q = PoseQuadric::plane(n, -n.dot(pa), 0.5 * len);
+      const PoseQuadric q = PoseQuadric::plane(n, -n.dot(pa), 0.5 * len * face_weight(fh));
       quadric(a, j) += q;
       quadric(b, j) += q;
       quadric(c, j) += q;
@@ -42,11 +43,17 @@ void accumulate_quadrics(const Mesh& mesh, int n_poses, Pos pos, Quadric quadric
       const double len = n.norm();
       if (len <= 0.0) continue;
       n /= len;
-      const PoseQuadric q = PoseQuadric::plane(n, -n.dot(pos(a, j)), e.squaredNorm());
+      const PoseQuadric q = PoseQuadric::plane(n, -n.dot(pos(a, j)), e.squaredNorm() * face_weight(fh));
       quadric(a, j) += q;
       quadric(b, j) += q;
     }
   }
+}
+
+/// accumulate_quadrics() with every face weighing 1.
+template <typename Mesh, typename Pos, typename Quadric>
+void accumulate_quadrics(const Mesh& mesh, int n_poses, Pos pos, Quadric quadric) {
+  accumulate_quadrics(mesh, n_poses, pos, quadric, [](typename Mesh::FaceHandle) { return 1.0; });
 }
 
 /** The point minimising the static quadric \p q for the edge (pa, pb): directions the quadric barely

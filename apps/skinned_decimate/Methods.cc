@@ -5,6 +5,9 @@
 #include <OpenMeshSkinned/Decimater/Baselines/ModRestPoseQuadricT.hh>
 #include <OpenMeshSkinned/Decimater/Baselines/ModTriangleCompactnessT.hh>
 #include <OpenMeshSkinned/Decimater/LazyDecimaterT.hh>
+#include <OpenMeshSkinned/Decimater/ModDeformationWeightedQuadricT.hh>
+#include <OpenMeshSkinned/Decimater/ModFrameFoldOverT.hh>
+#include <OpenMeshSkinned/Decimater/ModFrameQuadricT.hh>
 #include <OpenMeshSkinned/Decimater/ModJointGuardT.hh>
 #include <OpenMeshSkinned/Decimater/ModSkinnedFoldOverT.hh>
 #include <OpenMeshSkinned/Decimater/ModSkinnedQuadricT.hh>
@@ -42,6 +45,9 @@ struct Handles {
   OpenMeshSkinned::ModDeformationSensitiveT<Mesh>::Handle dsd;
   OpenMeshSkinned::ModPoseIndependentQuadricT<Mesh>::Handle decoro;
   OpenMeshSkinned::ModTriangleCompactnessT<Mesh>::Handle compact;
+  OpenMeshSkinned::ModFrameQuadricT<Mesh>::Handle frames;
+  OpenMeshSkinned::ModDeformationWeightedQuadricT<Mesh>::Handle deform;
+  OpenMeshSkinned::ModFrameFoldOverT<Mesh>::Handle frame_fold;
 };
 
 struct MethodModules {
@@ -61,6 +67,12 @@ const std::vector<MethodModules>& table() {
        [](Decimater& d, Handles& h) { d.add(h.rest), d.add(h.fold_over); }},
       {{"compact", "Savoye-Meyer triangle compactness, barycentre placement, power skinning"},
        [](Decimater& d, Handles& h) { d.add(h.compact), d.add(h.fold_over); }},
+      {{"frames",
+        "per-frame quadrics of the vertices' trajectories, placement along the edge; sees "
+        "morph-target frames: the default for meshes animated without a skeleton"},
+       [](Decimater& d, Handles& h) { d.add(h.frames); }},
+      {{"deform", "the deformation-analysis report's importance-weighted quadric, endpoint placement"},
+       [](Decimater& d, Handles& h) { d.add(h.deform), d.add(h.frame_fold); }},
       {{"static", "OpenMesh's ModQuadricT and ModNormalFlippingT as they are"},
        [](Decimater& d, Handles& h) { d.add(h.quadric), d.add(h.normal_flipping); }},
   };
@@ -140,8 +152,11 @@ std::vector<std::pair<Lod, Mesh>> build_chain(Mesh mesh, const std::vector<size_
   std::optional<Decimater> dec(std::in_place, mesh);
   Handles h;
   it->add(*dec, h);
-  dec->add(h.cap);
-  dec->module(h.cap).set_max_influences(opt.max_influences);
+  // The endpoint methods never change a skin: the cap would only bring in the skinned solver.
+  if (!h.frame_fold.is_valid() && !h.frames.is_valid()) {
+    dec->add(h.cap);
+    dec->module(h.cap).set_max_influences(opt.max_influences);
+  }
   if (opt.joint_guard > 0.0) {
     dec->add(h.guard);
     dec->module(h.guard).set_tau(opt.joint_guard);
@@ -162,15 +177,20 @@ std::vector<std::pair<Lod, Mesh>> build_chain(Mesh mesh, const std::vector<size_
     Lod lod;
     // Reach the requested count: when every collapse left folds a face by more than 90 degrees in some
     // pose, allow a larger turn step by step (and say so), unless --strict-fold.
-    if (!opt.strict_fold && h.fold_over.is_valid()) {
+    auto set_fold = [&](double angle) {
+      if (h.fold_over.is_valid()) dec->module(h.fold_over).set_max_angle(angle);
+      if (h.frame_fold.is_valid()) dec->module(h.frame_fold).set_max_angle(angle);
+      if (h.frames.is_valid()) dec->module(h.frames).set_max_fold_angle(angle);
+    };
+    if (!opt.strict_fold && (h.fold_over.is_valid() || h.frame_fold.is_valid() || h.frames.is_valid())) {
       for (double angle : {120.0, 150.0, 175.0}) {
         const size_t now = live_faces(mesh);
         if (now <= targets[i]) break;
-        dec->module(h.fold_over).set_max_angle(angle);
+        set_fold(angle);
         collapses += dec->decimate_to_faces(0, targets[i] + (mesh.n_faces() - now));
         lod.fold_limit = angle;
       }
-      dec->module(h.fold_over).set_max_angle(90.0);
+      set_fold(90.0);
     }
     lod.ratio = ratios[i];
     lod.target = targets[i];

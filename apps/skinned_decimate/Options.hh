@@ -37,6 +37,12 @@ struct Options {
   std::vector<int> max_joints;  // --max-joints N or N1,N2,... one per LOD (empty: skeleton kept whole)
   double joint_energy = 0.0;    // --joint-energy E: minor joints under it go (0: none by energy)
   bool strict_fold = false;     // --strict-fold: never relax the 90-degree fold-over limit
+  bool method_given = false;
+  bool sequences = true;        // --no-sequence: a numbered file is one mesh, not a frame of a sequence
+  double fps = 0.0;             // --fps: frame rate of a frame animation (0: 10 for MD2/MD3/MDL, 24 otherwise)
+  size_t keyframes = 0;         // --keyframes K: keep K frames of a frame animation, chosen by the GA (0: all)
+  bool pose_select_ga = false;  // --pose-select ga: example poses chosen by the key-frame GA
+  std::string segment;          // --segment OUT.glb: near-rigid parts, coloured, and OUT.json
 };
 
 // Past this many example poses the schedule stops being a sample of the clips and becomes the clips.

@@ -1,14 +1,18 @@
 #include "Run.hh"
 
+#include "Frames.hh"
 #include "Html.hh"
 #include "Methods.hh"
 #include "Report.hh"
 
+#include <OpenMeshSkinned/Deform/PoseSelection.hh>
 #include <OpenMeshSkinned/Eval/SurfaceDistance.hh>
 #include <OpenMeshSkinned/IO/ExportGltf.hh>
 #include <OpenMeshSkinned/IO/Import.hh>
+#include <OpenMeshSkinned/IO/ImportFrames.hh>
 #include <OpenMeshSkinned/IO/OutputSet.hh>
 #include <OpenMeshSkinned/Mesh/Procedural.hh>
+#include <OpenMeshSkinned/Skin/FrameAnimation.hh>
 #include <OpenMeshSkinned/Skin/KeyReduction.hh>
 #include <OpenMeshSkinned/Skin/PoseSchedule.hh>
 #include <OpenMeshSkinned/Solver/SkeletonLodT.hh>
@@ -69,13 +73,19 @@ Poses choose_poses(const Mesh& mesh, const std::string& name, const Options& opt
     return p;
   }
   p.schedule = make_pose_schedule(all, opt.poses, resolve_clip(all, opt.pose_clip, name));
+  // A frame animation learns from, and is judged on, stored frames, never the blend of two.
+  snap_to_frames(p.schedule, frame_times(mesh));
+  if (opt.pose_select_ga) {
+    const auto candidates = candidate_frames(mesh, p.schedule.held_out);
+    if (candidates.size() >= 2) p.schedule.examples = select_poses_ga(mesh, candidates, size_t(opt.poses));
+  }
   p.examples = poses_at(skel, all, p.schedule.examples);
   // The bind pose too, unless asked not to: it is the pose every other tool judges, and a handful of
   // clip frames can miss the neutral configuration entirely.
   if (opt.bind_pose) p.examples.push_back(Pose::identity(skel.size()));
   p.heldout = poses_at(skel, all, p.schedule.held_out.empty() ? p.schedule.examples : p.schedule.held_out);
   if (!opt.quiet) {
-    std::cout << name << ": example poses at";
+    std::cout << name << ": example poses" << (opt.pose_select_ga ? " (chosen by the key-frame GA)" : "") << " at";
     for (const auto& t : p.schedule.examples) std::cout << " " << all[t.clip].name << "@" << fmt(t.time, 3) << "s";
     std::cout << (opt.bind_pose ? " + bind pose" : "") << "\n";
   }
@@ -206,11 +216,16 @@ json run_character(const Mesh& mesh, const std::string& name, const Options& opt
   // surface allows); the LOD is then judged with its own skeleton and clips.
   std::vector<std::vector<Pose>> lod_frames;
   const bool animated_lod =
-      (!opt.max_joints.empty() || opt.joint_energy > 0.0 || opt.anim_error > 0.0) && !clips(mesh).empty();
+      (!opt.max_joints.empty() || opt.joint_energy > 0.0 || opt.anim_error > 0.0 || opt.keyframes > 0) &&
+      !clips(mesh).empty();
   if (animated_lod) {
     const auto& times = poses.schedule.held_out.empty() ? poses.schedule.examples : poses.schedule.held_out;
+    // --keyframes: the same frames for every LOD, chosen on the original's motion.
+    const std::vector<size_t> keys =
+        opt.keyframes > 0 ? choose_keyframes(mesh, opt.keyframes, opt.quiet) : std::vector<size_t>{};
     for (size_t i = 0; i < chain.size(); ++i) {
       Mesh& lmesh = chain[i].second;
+      if (!keys.empty()) keep_frames(lmesh, keys);
       if (!opt.max_joints.empty() || opt.joint_energy > 0.0) {
         const int budget =
             opt.max_joints.empty() ? skeleton(lmesh).size() : opt.max_joints[std::min(i, opt.max_joints.size() - 1)];
@@ -223,8 +238,10 @@ json run_character(const Mesh& mesh, const std::string& name, const Options& opt
       lod_frames.push_back(poses_at(skeleton(lmesh), clips(lmesh), times));
     }
   }
+  const bool frame_animation = !frame_times(mesh).empty();
   for (auto& [lod, lmesh] : chain) {
-    lod.keys = count_keys(clips(lmesh));
+    // A frame animation's keys are its stored frames.
+    lod.keys = frame_animation ? frame_times(lmesh).size() : count_keys(clips(lmesh));
     lod.joints = skeleton(lmesh).size();
     lod.max_influences = max_influences_of(lmesh);
   }
@@ -232,8 +249,9 @@ json run_character(const Mesh& mesh, const std::string& name, const Options& opt
     evaluate(mesh, chain, poses.heldout, lod_frames, opt.threads > 0 ? opt.threads : hardware_threads(), want_html);
   const auto t2 = Clock::now();
   const bool animated = !clips(mesh).empty();
-  print_table(name + " — " + method + (animated ? "" : ", rest pose only") + ", " + std::to_string(mesh.n_faces()) +
-                  " triangles in",
+  print_table(name + " — " + method + (animated ? "" : ", rest pose only") +
+                  (frame_animation ? ", " + std::to_string(frame_times(mesh).size()) + " frames" : "") + ", " +
+                  std::to_string(mesh.n_faces()) + " triangles in",
               chain, animated);
   json lods = json::array();
   for (size_t i = 0; i < chain.size(); ++i) {
@@ -372,12 +390,23 @@ int run_builtin(const Options& opt) {
 int run(const Options& opt) {
   check_arguments(opt);
   if (opt.input.empty()) return run_builtin(opt);
-  if (opt.output.empty()) throw UsageError("-o OUTPUT.glb is required with an INPUT");
-  const std::string ext = fs::path(opt.output).extension().string();
-  if (ext != ".glb" && ext != ".gltf") throw UsageError(opt.output + ": output must end in .glb or .gltf");
-  OutputSet outputs({opt.input});
+  if (opt.output.empty() && opt.segment.empty()) throw UsageError("-o OUTPUT.glb is required with an INPUT");
+  for (const std::string& out : {opt.output, opt.segment}) {
+    const std::string ext = fs::path(out).extension().string();
+    if (!out.empty() && ext != ".glb" && ext != ".gltf") throw UsageError(out + ": output must end in .glb or .gltf");
+  }
+  const std::vector<std::string> frames = frame_files(opt.input, opt.sequences);
+  if (opt.keyframes > 0 && frames.empty())
+    throw UsageError("--keyframes: " + opt.input +
+                     " is not animated without a skeleton (an MD2/MD3/MDL file or a numbered sequence); for a "
+                     "skinned clip's keys use --anim-error");
+  OutputSet outputs(frames.empty() ? std::vector<std::string>{opt.input} : frames);
   try {
-    plan_outputs(opt, {opt.output}, outputs);
+    if (!opt.output.empty()) plan_outputs(opt, {opt.output}, outputs);
+    if (!opt.segment.empty()) {
+      outputs.add(opt.segment);
+      outputs.add(segmentation_json_path(opt.segment));
+    }
   } catch (const IOError& e) {
     throw UsageError(e.what());  // a clash or a missing folder is the command line's fault: exit 2
   }
@@ -387,8 +416,13 @@ int run(const Options& opt) {
   io.memory_limit_mb = opt.max_memory_mb;
   io.time_limit_seconds = opt.time_limit;
   const auto t_import = Clock::now();
-  const auto rep = import_skinned(opt.input, mesh, io);
+  const auto rep = frames.empty() ? import_skinned(opt.input, mesh, io)
+                                  : import_frame_animation(frames, mesh, io, frame_rate(frames, opt.fps));
   const double import_s = seconds(t_import, Clock::now());
+  if (!frames.empty() && !opt.quiet && frames.size() > 1)
+    std::cout << opt.input << ": one frame of " << frames.size() << " files "
+              << fs::path(frames.front()).filename().string() << " .. " << fs::path(frames.back()).filename().string()
+              << " (--no-sequence reads it alone)\n";
   if (opt.faces > mesh.n_faces())
     throw UsageError("--faces " + std::to_string(opt.faces) + " is more than the input's " +
                      std::to_string(mesh.n_faces()) + " triangles");
@@ -396,8 +430,26 @@ int run(const Options& opt) {
   check_pose_budget(mesh, opt);
   // After the checks, so that a bad argument is one line. Always shown: they say what was changed or lost.
   for (const auto& w : rep.warnings) std::cerr << "skinned-decimate: warning: " << opt.input << ": " << w << "\n";
+  if (!opt.segment.empty()) {
+    write_segmentation(mesh, opt.segment, outputs);
+    if (opt.output.empty()) {
+      outputs.commit();
+      std::cout << "  wrote " << opt.segment << " and " << segmentation_json_path(opt.segment) << "\n";
+      return 0;
+    }
+  }
   Options o = opt;
   if (o.lods.empty() && o.faces == 0 && !o.ratio_given) o.ratio = 0.5;
+  // Only the frame quadric sees morph-target frames; the skinned solver's methods decimate them in the rest
+  // shape (their morph offsets carried along).
+  if (!frame_times(mesh).empty()) {
+    if (!opt.method_given)
+      o.method = "frames";
+    else if (o.method != "frames" && o.method != "deform" && o.method != "static" && !opt.compare)
+      std::cerr << "skinned-decimate: warning: --method " << o.method
+                << " does not see the frames of a mesh animated without a skeleton: it decimates the first frame "
+                   "(use frames)\n";
+  }
   json report;
   const bool page = !opt.html.empty() || !opt.preview.empty();
   std::vector<HtmlSection> sections;
@@ -405,14 +457,14 @@ int run(const Options& opt) {
   if (o.compare) {
     json runs = json::array();
     for (const Method& m : methods()) {
-      runs.push_back(run_character(mesh, opt.input, o, m.name, opt.output, m.name == opt.method ? &outputs : nullptr,
+      runs.push_back(run_character(mesh, opt.input, o, m.name, opt.output, m.name == o.method ? &outputs : nullptr,
                                    page ? &sections : nullptr, title));
       std::cout << "\n";
     }
     print_comparison(runs);
     report = {{"input", opt.input}, {"runs", runs}};
   } else {
-    report = run_character(mesh, opt.input, o, opt.method, opt.output, &outputs, page ? &sections : nullptr, title);
+    report = run_character(mesh, opt.input, o, o.method, opt.output, &outputs, page ? &sections : nullptr, title);
   }
   if (page) write_page(opt, "skinned-decimate: " + title, sections, outputs);
   report["import_seconds"] = import_s;

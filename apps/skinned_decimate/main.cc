@@ -26,7 +26,11 @@ int main(int argc, char** argv) {
       "skinned-decimate: LODs of a skinned character that stay right in poses never seen.\n"
       "With no INPUT, runs the papers' test characters (DeCoro's leg, Landreneau-Schaefer's column)."};
   Options opt;
-  app.add_option("input", opt.input, "Skinned asset (glTF/GLB, FBX, Collada, X, MD5, ...)")->check(CLI::ExistingFile);
+  app.add_option("input", opt.input,
+                 "Skinned asset (glTF/GLB, FBX, Collada, X, MD5, ...), or a mesh animated without a skeleton: an "
+                 "MD2/MD3/MDL file (every stored frame is read) or one file of a numbered sequence "
+                 "(walk_0001.obj, walk_0002.obj, ...: every file of it is a frame)")
+      ->check(CLI::ExistingFile);
   app.add_option(
       "-o,--output", opt.output,
       "Output .glb/.gltf; with --lods, NAME_lod1.glb, NAME_lod2.glb ... in the order of decreasing ratio "
@@ -90,6 +94,23 @@ int main(int argc, char** argv) {
   app.add_flag("--strict-fold", opt.strict_fold,
                "Stop where every collapse would turn a face by more than 90 degrees in some pose (by default the "
                "limit is relaxed to 120, 150, then 175 degrees to reach the target, and the table says so)");
+  app.add_flag("!--no-sequence", opt.sequences,
+               "Read a numbered file as one mesh, not as a frame of the sequence its siblings make");
+  app.add_option("--fps", opt.fps,
+                 "Frame rate of a mesh animated without a skeleton (default 10 for MD2/MD3/MDL, 24 for sequences)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--keyframes", opt.keyframes,
+                 "Meshes animated without a skeleton: keep K of the frames in the LODs, chosen by a genetic "
+                 "algorithm (the deformation-analysis report) so that interpolation rebuilds the others best")
+      ->check(CLI::Range(2, 100000));
+  std::string pose_select = "even";
+  app.add_option("--pose-select", pose_select,
+                 "How the example poses are chosen: even (evenly spaced times; default) or ga (the key-frame "
+                 "genetic algorithm over the frames that are not held out)")
+      ->check(CLI::IsMember({"even", "ga"}));
+  app.add_option("--segment", opt.segment,
+                 "Write the input cut into near-rigid parts (Lee et al.) as OUT.glb, one colour per part, and "
+                 "the parts of its faces as OUT.json; without -o nothing is decimated");
   app.add_flag("!--no-eval", opt.evaluate,
                "Skip measuring the error in held-out frames (batch use: the table shows triangles and time only)");
   try {
@@ -102,6 +123,8 @@ int main(int argc, char** argv) {
   }
   opt.html_beside = assets == "beside";
   opt.anim_frames = anim_method == "frames";
+  opt.pose_select_ga = pose_select == "ga";
+  opt.method_given = app.count("--method") > 0;
   opt.poses_given = app.count("--poses") > 0;
   opt.ratio_given = app.count("--ratio") > 0;
   opt.faces_given = app.count("--faces") > 0;

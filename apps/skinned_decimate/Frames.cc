@@ -1,0 +1,125 @@
+#include "Frames.hh"
+
+#include <OpenMeshSkinned/Deform/KeyframeGA.hh>
+#include <OpenMeshSkinned/Deform/NearRigidSegmentation.hh>
+#include <OpenMeshSkinned/Deform/PoseSelection.hh>
+#include <OpenMeshSkinned/IO/ExportGltf.hh>
+#include <OpenMeshSkinned/IO/ImportFrames.hh>
+#include <OpenMeshSkinned/Skin/FrameAnimation.hh>
+#include <OpenMeshSkinned/Skin/LinearBlendSkinning.hh>
+#include <OpenMeshSkinned/Skin/SkinProperties.hh>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+namespace skinned_decimate {
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace OpenMeshSkinned;
+
+// At most this many vertices and frames feed the GA's fitness and the segmentation's analysis.
+constexpr size_t kMaxFitnessVertices = 5000;
+constexpr size_t kMaxSegmentFrames = 60;
+
+bool stores_frames(const std::string& path) { return stored_frame_count(path) > 1; }
+
+}  // namespace
+
+std::vector<std::string> frame_files(const std::string& input, bool sequences) {
+  if (stores_frames(input)) return {input};
+  if (!sequences) return {};
+  std::vector<std::string> seq = numbered_sequence(input);
+  return seq.size() >= 2 ? seq : std::vector<std::string>{};
+}
+
+double frame_rate(const std::vector<std::string>& files, double fps) {
+  if (fps > 0.0) return fps;
+  return files.size() == 1 ? 10.0 : 24.0;
+}
+
+std::vector<size_t> choose_keyframes(const Mesh& original, size_t k, bool quiet) {
+  const size_t n = frame_times(original).size();
+  if (k > n)
+    throw UsageError("--keyframes " + std::to_string(k) + " is more than the " + std::to_string(n) + " frames");
+  const size_t stride = (original.n_vertices() + kMaxFitnessVertices - 1) / kMaxFitnessVertices;
+  std::vector<FramePoints> frames;
+  for (size_t f = 0; f < n; ++f) {
+    const FramePositions all = frame_positions(original, f);
+    FramePoints p;
+    for (size_t v = 0; v < all.size(); v += std::max<size_t>(1, stride)) p.push_back(all[v]);
+    frames.push_back(std::move(p));
+  }
+  const InterpolationError err(frames, frame_times(original));
+  const KeyframeSelection ga = select_keyframes_ga(err, k);
+  if (!quiet) {
+    const double even = select_keyframes_even(err, k).error;
+    std::cout << "key frames (GA, " << ga.generations << " generations):";
+    for (size_t f : ga.frames) std::cout << " " << f;
+    std::cout << "\n  interpolation error over all " << n << " frames: " << ga.error << " (even spacing: " << even
+              << ")\n";
+  }
+  return ga.frames;
+}
+
+std::string segmentation_json_path(const std::string& glb) {
+  const fs::path p(glb);
+  return (p.parent_path() / (p.stem().string() + ".json")).string();
+}
+
+void write_segmentation(const Mesh& mesh, const std::string& out, OutputSet& outputs) {
+  std::vector<FramePoints> frames;
+  if (!frame_times(mesh).empty()) {
+    for (size_t f = 0; f < frame_times(mesh).size(); ++f) frames.push_back(frame_positions(mesh, f));
+  } else if (!clips(mesh).empty()) {
+    std::vector<PoseTime> times = candidate_frames(mesh, {});
+    const size_t n = std::min(kMaxSegmentFrames, times.size());
+    for (size_t i = 0; i < n; ++i) {
+      const PoseTime& t = times[i * times.size() / n];
+      frames.push_back(skin_positions(mesh, sample_pose(skeleton(mesh), clips(mesh)[t.clip], t.time)));
+    }
+  } else {
+    throw UsageError("--segment: the input has no animation; near-rigid parts are found from how it moves");
+  }
+  FramePoints ref(mesh.n_vertices());
+  for (auto vh : mesh.all_vertices()) ref[vh.idx()] = to_eigen(mesh.point(vh));
+  const Segmentation seg = segment_near_rigid(mesh, ref, frames);
+
+  Mesh coloured = mesh;
+  auto& mats = materials(coloured);
+  mats.clear();
+  for (int p = 0; p < seg.parts; ++p) {
+    Material m;
+    m.name = "part" + std::to_string(p);
+    // Hues spread by the golden angle, so that neighbouring labels differ.
+    const double h = std::fmod(p * 0.618033988749895, 1.0) * 6.0;
+    const double x = 1.0 - std::abs(std::fmod(h, 2.0) - 1.0);
+    const double rgb[6][3] = {{1, x, 0}, {x, 1, 0}, {0, 1, x}, {0, x, 1}, {x, 0, 1}, {1, 0, x}};
+    for (int c = 0; c < 3; ++c) m.base_color[c] = 0.15 + 0.8 * rgb[int(h) % 6][c];
+    mats.push_back(m);
+  }
+  const auto hm = face_material_handle(coloured);
+  for (auto fh : coloured.faces()) coloured.property(hm, fh) = seg.part[fh.idx()];
+  export_gltf(coloured, outputs.staging(out));
+
+  nlohmann::ordered_json j = {{"parts", seg.parts},
+                              {"frames_analysed", frames.size()},
+                              {"feature_faces", seg.feature_faces},
+                              {"face_part", seg.part},
+                              {"method",
+                               "Lee et al., near-rigid segmentation: eq. 4-6, feature faces 3.2, "
+                               "clustering 3.3 (eq. 7 and the min-cut smoothing left out)"}};
+  std::ofstream f(outputs.staging(segmentation_json_path(out)), std::ios::binary);
+  f << j.dump(1) << "\n";
+  f.close();
+  if (!f) throw IOError(segmentation_json_path(out) + ": cannot be written");
+  std::cout << "segmented into " << seg.parts << " near-rigid parts over " << frames.size() << " frames ("
+            << seg.feature_faces.size() << " feature faces)\n";
+}
+
+}  // namespace skinned_decimate
