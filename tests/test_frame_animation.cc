@@ -90,3 +90,31 @@ TEST(FrameAnimation, TheGltfFilePlaysTheFramesAsTheSpecPosesIt) {
     EXPECT_LT(omsk_spec::max_nearest_distance(e, s), 1e-4) << "frame " << f;
   }
 }
+
+TEST(FrameAnimation, SeveralMaterialsKeepOneSetOfTargetsThroughGltf) {
+  // Two materials: the file has two primitives, each with every target, moved by the node's one set of
+  // weights; read back, they are one set again (not 2 x 10 targets).
+  Mesh mesh = baked_leg();
+  materials(mesh).push_back(materials(mesh)[0]);
+  materials(mesh)[1].name = "upper";
+  const auto hm = face_material_handle(mesh);
+  for (auto fh : mesh.faces()) mesh.property(hm, fh) = mesh.point(*mesh.cfv_iter(fh))[1] > 1.0 ? 1 : 0;
+  const std::string path = ::testing::TempDir() + "frames_two_materials.glb";
+  export_gltf(mesh, path);
+  Mesh back;
+  import_skinned(path, back);
+  EXPECT_EQ(morph_targets(back).size(), 10u);
+  ASSERT_EQ(clips(back).size(), 1u);
+  EXPECT_EQ(clips(back)[0].morph_channels.size(), 10u);
+  const double t = frame_times(mesh)[7];
+  const auto a = skin_positions(mesh, sample_pose(skeleton(mesh), clips(mesh)[0], t));
+  const auto b = skin_positions(back, sample_pose(skeleton(back), clips(back)[0], t));
+  // Vertices are renumbered by the file: compare the posed point sets.
+  double worst = 0.0;
+  for (auto vb : back.vertices()) {
+    double nearest = HUGE_VAL;
+    for (auto va : mesh.vertices()) nearest = std::min(nearest, (a[va.idx()] - b[vb.idx()]).norm());
+    worst = std::max(worst, nearest);
+  }
+  EXPECT_LT(worst, 1e-4);
+}

@@ -25,17 +25,27 @@ struct DualGraph {
 DualGraph dual_graph(const SkinnedMesh& mesh, const FramePoints& ref, const FaceGradients<SkinnedMesh>& g,
                      double delta) {
   const std::vector<double> D = deformation_distances(mesh, ref, g, true);
-  double sum_geod = 0.0, sum_d = 0.0;
-  size_t n = 0;
+  double sum_geod = 0.0;
+  std::vector<double> interior;
   for (auto eh : mesh.edges())
     if (!mesh.is_boundary(eh)) {
       sum_geod += centroid_distance(mesh, ref, mesh.face_handle(mesh.halfedge_handle(eh, 0)),
                                     mesh.face_handle(mesh.halfedge_handle(eh, 1)));
-      sum_d += D[eh.idx()];
-      ++n;
+      interior.push_back(D[eh.idx()]);
     }
+  const size_t n = interior.size();
   const double avg_geod = n && sum_geod > 0.0 ? sum_geod / n : 1.0;
-  const double avg_d = n ? sum_d / n : 0.0;
+  // avg(D) of eq. 5 with the largest 1 % clipped: a few slivers, whose gradients blow up (a vertex
+  // quantised onto its neighbour's line in some frame), would otherwise make the average hundreds of times
+  // the typical distance and every other edge look rigid.
+  double avg_d = 0.0;
+  if (n) {
+    std::vector<double> sorted = interior;
+    const size_t k = std::min(n - 1, size_t(0.99 * double(n)));
+    std::nth_element(sorted.begin(), sorted.begin() + long(k), sorted.end());
+    const double clip = sorted[k];
+    for (double x : interior) avg_d += std::min(x, clip) / double(n);
+  }
   DualGraph G;
   G.arcs.resize(mesh.n_faces());
   G.area.assign(mesh.n_faces(), 0.0);
@@ -172,34 +182,15 @@ Segmentation segment_near_rigid(const SkinnedMesh& mesh, const FramePoints& ref,
   std::vector<int> feature_part;
   std::vector<std::vector<Eigen::Matrix3d>> part_gradient;
   std::vector<double> part_area;
-  for (size_t round = 0; round < nf; ++round) {
-    std::vector<int> a_faces;
-    for (size_t f = 0; f < nf; ++f)
-      if (in_a[f]) a_faces.push_back(int(f));
-    if (a_faces.size() == nf) break;
-    int p = -1;
-    if (a_faces.empty()) {
-      p = 0;  // nothing bends: any face starts the first part
-    } else {
-      const std::vector<double> d = shortest_paths(G, a_faces);
-      double best = -1.0;
-      for (size_t f = 0; f < nf; ++f) {
-        // A piece of B cut off from A entirely is infinitely far: it is taken first.
-        const double df = std::isinf(d[f]) ? std::numeric_limits<double>::max() : d[f];
-        if (!in_a[f] && df > best) best = df, p = int(f);
-      }
-    }
-    const std::vector<int> R = influence_region(G, in_a, p);
-    double area = 0.0;
-    for (int f : R) area += G.area[f];
-    if (area < s.min_region_area * total_area && !out.feature_faces.empty()) break;
+  // A region becomes a part of its own or joins the part whose deformation is within gamma of its own.
+  auto add_region = [&](int p, const std::vector<int>& R) {
     double r_area = 0.0;
     const std::vector<Eigen::Matrix3d> N = average_gradient(g, G, R, &r_area);
     int join = -1;
     for (size_t k = 0; k < part_gradient.size() && join < 0; ++k) {
-      double worst = 0.0;
-      for (size_t t = 0; t < N.size(); ++t) worst = std::max(worst, (N[t] - part_gradient[k][t]).squaredNorm());
-      if (worst <= s.gamma) join = int(k);
+      double mean = 0.0;
+      for (size_t t = 0; t < N.size(); ++t) mean += (N[t] - part_gradient[k][t]).squaredNorm() / N.size();
+      if (mean <= s.gamma) join = int(k);
     }
     if (join < 0) {
       join = int(part_gradient.size());
@@ -214,6 +205,32 @@ Segmentation segment_near_rigid(const SkinnedMesh& mesh, const FramePoints& ref,
     out.feature_faces.push_back(p);
     feature_part.push_back(join);
     for (int f : R) in_a[f] = 1;
+  };
+  // Pieces of the mesh where nothing bends (no face of A reaches them: a separate rigid accessory, or a
+  // whole mesh that moves rigidly) are each one region, whatever their size.
+  {
+    std::vector<int> a_faces;
+    for (size_t f = 0; f < nf; ++f)
+      if (in_a[f]) a_faces.push_back(int(f));
+    const std::vector<double> d = shortest_paths(G, a_faces);
+    for (size_t f = 0; f < nf; ++f)
+      if (!in_a[f] && std::isinf(d[f])) add_region(int(f), influence_region(G, in_a, int(f)));
+  }
+  for (size_t round = 0; round < nf; ++round) {
+    std::vector<int> a_faces;
+    for (size_t f = 0; f < nf; ++f)
+      if (in_a[f]) a_faces.push_back(int(f));
+    if (a_faces.size() == nf) break;
+    const std::vector<double> d = shortest_paths(G, a_faces);
+    int p = -1;
+    double best = -1.0;
+    for (size_t f = 0; f < nf; ++f)
+      if (!in_a[f] && d[f] > best) best = d[f], p = int(f);
+    const std::vector<int> R = influence_region(G, in_a, p);
+    double area = 0.0;
+    for (int f : R) area += G.area[f];
+    if (area < s.min_region_area * total_area) break;
+    add_region(p, R);
   }
   if (out.feature_faces.empty()) {
     out.feature_faces.push_back(0);

@@ -10,8 +10,11 @@
  *  - the feature faces (3.2): set A = faces with a neighbour farther than epsilon, B = the rest; repeatedly
  *    the face of B farthest from A is a feature face, its influence region R is where the harmonic field
  *    (1 at the feature face, 0 on A) is at least 0.01, R joins an existing part when the average
- *    deformation gradients of the two are within gamma (squared Frobenius, worst frame) and otherwise
- *    starts a new part, and R moves to A; until R's area is under min_region_area of the whole;
+ *    deformation gradients of the two are within gamma (squared Frobenius norm of their difference; the
+ *    paper does not say over which frames: here its mean over the frames, as the worst frame over a long
+ *    animation keeps every pair apart) and otherwise starts a new part, and R moves to A; until R's area
+ *    is under min_region_area of the whole. Pieces of the mesh that no face of A reaches (a separate rigid
+ *    accessory) are each a region of their own first, whatever their size;
  *  - the clustering of eq. 6: every face goes to the part of its nearest feature face (shortest paths on
  *    the dual graph), and a part that falls apart into disconnected pieces (3.3, Fig. 4) is split: pieces
  *    holding feature faces become parts of their own, pieces without one join the neighbour they share
@@ -34,7 +37,7 @@ namespace OpenMeshSkinned {
 struct SegmentationSettings {
   double delta = 0.15;            ///< eq. 5: share of the geodesic term (the paper: 0.1 to 0.2)
   double epsilon = 0.5;           ///< set A: a face with a neighbour farther than this (the paper: 0.3 to 0.8)
-  double gamma = 1.0;             ///< merge threshold on average gradients (the paper: 0.4 to 1.6)
+  double gamma = 0.4;             ///< merge threshold on average gradients (the paper: 0.4 to 1.6)
   double min_region_area = 0.01;  ///< stop when an influence region has less of the total area
 };
 

@@ -105,17 +105,28 @@ void attach_frames(aiScene* scene, const std::string& path, const ImportOptions&
 }
 
 // Morph targets of every mesh instance, numbered one after the other; returns where each instance's start.
+// Instances of one node with as many targets share them: they are the primitives of one glTF mesh (which
+// must all have the same targets, moved by the node's one set of weights), or the meshes of one node that
+// its clips' weight channels move together; numbering them apart would multiply the targets.
 std::vector<size_t> read_morph_targets(const aiScene* scene, const std::vector<MeshInstance>& instances,
                                        SkinnedMesh& mesh, const std::string& path) {
   std::vector<size_t> target_base(instances.size(), 0);
   for (size_t ii = 0; ii < instances.size(); ++ii) {
     const aiMesh* am = scene->mMeshes[instances[ii].mesh];
+    for (unsigned t = 0; t < am->mNumAnimMeshes; ++t)
+      if (am->mAnimMeshes[t]->mNumVertices != am->mNumVertices)
+        throw IOError(path + ": morph target " + std::to_string(t) + " of mesh \"" + am->mName.C_Str() + "\" has " +
+                      std::to_string(am->mAnimMeshes[t]->mNumVertices) + " vertices, the mesh " +
+                      std::to_string(am->mNumVertices));
     target_base[ii] = morph_targets(mesh).size();
+    bool shared = false;
+    for (size_t jj = 0; jj < ii && !shared; ++jj)
+      if (instances[jj].node == instances[ii].node && am->mNumAnimMeshes > 0 &&
+          scene->mMeshes[instances[jj].mesh]->mNumAnimMeshes == am->mNumAnimMeshes)
+        target_base[ii] = target_base[jj], shared = true;
+    if (shared) continue;
     for (unsigned t = 0; t < am->mNumAnimMeshes; ++t) {
       const aiAnimMesh* an = am->mAnimMeshes[t];
-      if (an->mNumVertices != am->mNumVertices)
-        throw IOError(path + ": morph target " + std::to_string(t) + " of mesh \"" + am->mName.C_Str() + "\" has " +
-                      std::to_string(an->mNumVertices) + " vertices, the mesh " + std::to_string(am->mNumVertices));
       MorphTarget mt;
       mt.name = an->mName.length ? an->mName.C_Str() : std::string(am->mName.C_Str()) + "_target" + std::to_string(t);
       morph_targets(mesh).push_back(mt);

@@ -65,6 +65,10 @@ void read_clips(const aiScene* scene, const SceneNodes& sn, const JointMap& join
         for (unsigned t = 0; t < nt; ++t) {
           MorphChannel mc;
           mc.target = static_cast<int>(target_base[ii] + t);
+          // Instances sharing their targets (one glTF mesh's primitives) share the channel too.
+          if (std::any_of(clip.morph_channels.begin(), clip.morph_channels.end(),
+                          [&](const MorphChannel& o) { return o.target == mc.target; }))
+            continue;
           for (unsigned k = 0; k < ma->mNumKeys; ++k) {
             const aiMeshMorphKey& key = ma->mKeys[k];
             double w = 0.0;

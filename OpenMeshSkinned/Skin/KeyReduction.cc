@@ -66,9 +66,11 @@ Clip reduce_keys(const Clip& clip, const KeyTolerance& tol) {
 
 size_t count_keys(const std::vector<Clip>& clips) {
   size_t n = 0;
-  for (const Clip& c : clips)
+  for (const Clip& c : clips) {
     for (const Channel& ch : c.channels)
       n += ch.translation_times.size() + ch.rotation_times.size() + ch.scale_times.size();
+    for (const MorphChannel& ch : c.morph_channels) n += ch.times.size();
+  }
   return n;
 }
 

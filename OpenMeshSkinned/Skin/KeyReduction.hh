@@ -41,7 +41,8 @@ enum class KeyReductionMethod {
   Frames,    ///< merge_key_frames(): the paper's whole-frame merge
 };
 
-/// Keys over every channel of \p clips (translation, rotation and scale keys counted separately).
+/// Keys over every channel of \p clips (translation, rotation and scale keys counted separately, and the
+/// keys of every morph weight channel).
 size_t count_keys(const std::vector<Clip>& clips);
 
 /// Every key time of \p clip's channels and the midpoints between consecutive ones, sorted.

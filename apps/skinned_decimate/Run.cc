@@ -441,14 +441,19 @@ int run(const Options& opt) {
   Options o = opt;
   if (o.lods.empty() && o.faces == 0 && !o.ratio_given) o.ratio = 0.5;
   // Only the frame quadric sees morph-target frames; the skinned solver's methods decimate them in the rest
-  // shape (their morph offsets carried along).
-  if (!frame_times(mesh).empty()) {
+  // shape (their morph offsets carried along). So a mesh animated without a skeleton (stored frames, or
+  // glTF clips that move morph targets and no joint) gets it by default.
+  const auto& all_clips = clips(mesh);
+  const bool morph_only =
+      std::any_of(all_clips.begin(), all_clips.end(), [](const Clip& c) { return !c.morph_channels.empty(); }) &&
+      std::all_of(all_clips.begin(), all_clips.end(), [](const Clip& c) { return c.channels.empty(); });
+  if (morph_only) {
     if (!opt.method_given)
       o.method = "frames";
     else if (o.method != "frames" && o.method != "deform" && o.method != "static" && !opt.compare)
       std::cerr << "skinned-decimate: warning: --method " << o.method
-                << " does not see the frames of a mesh animated without a skeleton: it decimates the first frame "
-                   "(use frames)\n";
+                << " does not see the morph targets of a mesh animated without a skeleton: it decimates the rest "
+                   "shape (use frames)\n";
   }
   json report;
   const bool page = !opt.html.empty() || !opt.preview.empty();
