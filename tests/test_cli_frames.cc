@@ -128,6 +128,13 @@ TEST(CliFrames, ANumberedObjSequenceIsOneAnimation) {
   const auto alone = cli("fold_0005.obj -o one.glb --ratio 0.5 --no-sequence", d);
   ASSERT_EQ(alone.code, 0) << alone.out;
   EXPECT_NE(alone.out.find("rest pose only"), std::string::npos) << alone.out;
+  // Formats that carry a character are never taken for frames: two numbered copies are two versions.
+  fs::copy_file(fs::path(OMSK_TEST_MODELS) / "X/Testwuson.X", d / "hero_1.x");
+  fs::copy_file(fs::path(OMSK_TEST_MODELS) / "X/Testwuson.X", d / "hero_2.x");
+  const auto hero = cli("hero_2.x -o hero.glb --ratio 0.5 --no-eval", d);
+  ASSERT_EQ(hero.code, 0) << hero.out;
+  EXPECT_EQ(hero.out.find("one frame of"), std::string::npos) << hero.out;
+  EXPECT_NE(hero.out.find("skinned"), std::string::npos) << hero.out;
   // A frame with other faces: one line naming it, exit 1, nothing written.
   std::ofstream(d / "fold_0010.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
   const auto bad = cli("fold_0001.obj -o bad.glb", d);

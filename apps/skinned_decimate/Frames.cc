@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -33,7 +34,11 @@ bool stores_frames(const std::string& path) { return stored_frame_count(path) > 
 
 std::vector<std::string> frame_files(const std::string& input, bool sequences) {
   if (stores_frames(input)) return {input};
-  if (!sequences) return {};
+  // Only formats that hold one still mesh make sequences: a "hero_2.glb" beside "hero_1.glb" is two
+  // versions of a character, not two frames.
+  std::string ext = fs::path(input).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (!sequences || (ext != ".obj" && ext != ".ply" && ext != ".stl" && ext != ".off")) return {};
   std::vector<std::string> seq = numbered_sequence(input);
   return seq.size() >= 2 ? seq : std::vector<std::string>{};
 }

@@ -12,7 +12,8 @@
 namespace skinned_decimate {
 
 /// The files of the frame animation \p input stands for: itself when it stores frames (MD2/MD3/MDL), its
-/// numbered siblings when \p sequences and there are two or more; empty when it is one mesh.
+/// numbered siblings when \p sequences, it is an OBJ, PLY, STL or OFF file and there are two or more;
+/// empty when it is one mesh.
 std::vector<std::string> frame_files(const std::string& input, bool sequences);
 
 /// The frame rate to play \p files at: \p fps when given, else 10 for Quake's formats (their animations

@@ -23,12 +23,13 @@ std::string method_help() {
 
 int main(int argc, char** argv) {
   CLI::App app{
-      "skinned-decimate: LODs of a skinned character that stay right in poses never seen.\n"
+      "skinned-decimate: LODs of an animated character (skinned, or animated without a skeleton) that stay right "
+      "in poses never seen.\n"
       "With no INPUT, runs the papers' test characters (DeCoro's leg, Landreneau-Schaefer's column)."};
   Options opt;
   app.add_option("input", opt.input,
                  "Skinned asset (glTF/GLB, FBX, Collada, X, MD5, ...), or a mesh animated without a skeleton: an "
-                 "MD2/MD3/MDL file (every stored frame is read) or one file of a numbered sequence "
+                 "MD2/MD3/MDL file (every stored frame is read) or one file of a numbered OBJ/PLY/STL/OFF sequence "
                  "(walk_0001.obj, walk_0002.obj, ...: every file of it is a frame)")
       ->check(CLI::ExistingFile);
   app.add_option(
