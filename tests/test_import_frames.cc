@@ -35,7 +35,22 @@ fs::path fresh_dir(const std::string& name) {
 TEST(ImportFrames, Md2HeadersGiveTheirFrameCounts) {
   EXPECT_EQ(stored_frame_count(model("MD2/faerie.md2")), 198u);
   EXPECT_EQ(stored_frame_count(model("MD2/sydney.md2")), 198u);
+  EXPECT_EQ(stored_frame_count(model("MDL/MDL3 (3DGS A4)/minigun.MDL")), 8u);  // 3D GameStudio: Quake's MDL header
+  EXPECT_EQ(stored_frame_count(model("MDL/MDL7 (3DGS A7)/PhosphoricAcid_MDl7.mdl")), 1u);
   EXPECT_EQ(stored_frame_count(model("OBJ/box.obj")), 1u);
+}
+
+TEST(ImportFrames, StoredFramesThatAllHaveOneShapeAreAStillMeshAndSaySo) {
+  // The 3D GameStudio minigun stores 8 frames, and assimp gives the same positions for each.
+  Mesh mesh;
+  const auto rep = import_frame_animation({model("MDL/MDL3 (3DGS A4)/minigun.MDL")}, mesh, {}, 10.0);
+  EXPECT_TRUE(frame_times(mesh).empty());
+  EXPECT_TRUE(morph_targets(mesh).empty());
+  EXPECT_TRUE(clips(mesh).empty());
+  EXPECT_EQ(mesh.n_faces(), 576u);
+  bool said = false;
+  for (const auto& w : rep.warnings) said |= w.find("8 stored frames, all with the same shape") != std::string::npos;
+  EXPECT_TRUE(said);
 }
 
 TEST(ImportFrames, EveryStoredFrameOfAnMd2BecomesAFrame) {

@@ -34,14 +34,16 @@ size_t stored_frame_count(const std::string& path) {
   char ident[4] = {0, 0, 0, 0};
   f.read(ident, 4);
   if (!f) return 1;
-  // Header layouts: id Software's md2.h / md3.h / modelgen.h (little-endian int32 fields).
+  // Header layouts: id Software's md2.h / md3.h / modelgen.h (little-endian int32 fields); 3D GameStudio's
+  // MDL2-MDL5 share Quake's MDL header (MDL7 does not, and stores no frames assimp reads).
   int32_t n = 1;
   if (std::memcmp(ident, "IDP2", 4) == 0)
     n = read_i32(path, 40);  // MD2: num_frames
   else if (std::memcmp(ident, "IDP3", 4) == 0)
     n = read_i32(path, 76);  // MD3: after name[64] and flags
-  else if (std::memcmp(ident, "IDPO", 4) == 0)
-    n = read_i32(path, 68);  // MDL: after the skin and counts
+  else if (std::memcmp(ident, "IDPO", 4) == 0 ||
+           (std::memcmp(ident, "MDL", 3) == 0 && ident[3] >= '2' && ident[3] <= '5'))
+    n = read_i32(path, 68);  // MDL: after the scale, origin, radius, eye, skin and counts
   return n > 0 ? size_t(n) : 1;
 }
 
@@ -84,6 +86,21 @@ ImportReport import_frame_animation(const std::vector<std::string>& files, Skinn
   ImportReport rep = import_skinned(files[0], mesh, o);
   if (morph_targets(mesh).size() + 1 != n)
     throw IOError(files[0] + ": has morph targets of its own: a frame animation cannot be read from it");
+  // A file whose stored frames all have frame 0's shape (or whose reader gives frame 0 for each) is a
+  // still mesh: said, not dressed up as an animation.
+  OpenMesh::VPropHandleT<MorphDeltas> hd;
+  bool moves = false;
+  if (morph_deltas_handle(mesh, hd))
+    for (auto vh : mesh.vertices())
+      for (const auto& d : mesh.property(hd, vh)) moves |= d.squaredNorm() > 0.0f;
+  if (!moves) {
+    morph_targets(mesh).clear();
+    if (morph_deltas_handle(mesh, hd)) mesh.remove_property(hd);
+    rep.morph_targets = 0;
+    rep.warnings.push_back(std::to_string(n) + " stored frames, all with the same shape (as the reader gives " +
+                           "them): read as one still mesh");
+    return rep;
+  }
   std::vector<double> times;
   for (size_t f = 0; f < n; ++f) times.push_back(double(f) / fps);
   set_frame_times(mesh, times);

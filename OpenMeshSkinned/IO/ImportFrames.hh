@@ -21,7 +21,8 @@ std::vector<std::string> numbered_sequence(const std::string& path);
 
 /** Reads a frame animation into \p mesh: the stored frames of \p files[0] when it is the only file, else
  *  one frame per file. Each frame is read like import_skinned() (materials, textures and UVs come from
- *  the first) and must give the same vertices and faces; frame f plays at time f / fps. Throws IOError
+ *  the first) and must give the same vertices and faces; frame f plays at time f / fps. When every frame
+ *  has frame 0's shape the mesh is read as a still one (no clip) and the report says so. Throws IOError
  *  naming the first frame that does not match, and when there is only one frame. */
 ImportReport import_frame_animation(const std::vector<std::string>& files, SkinnedMesh& mesh, const ImportOptions& opt,
                                     double fps);

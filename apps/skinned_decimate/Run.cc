@@ -72,12 +72,15 @@ Poses choose_poses(const Mesh& mesh, const std::string& name, const Options& opt
     p.examples = p.heldout = {Pose::identity(skel.size())};
     return p;
   }
-  p.schedule = make_pose_schedule(all, opt.poses, resolve_clip(all, opt.pose_clip, name));
-  // A frame animation learns from, and is judged on, stored frames, never the blend of two.
+  // A frame animation learns from, and is judged on, stored frames, never the blend of two; with few of
+  // them, half are kept back to judge on.
+  const size_t stored = frame_times(mesh).size();
+  const int k = stored > 0 ? std::min<int>(opt.poses, int((stored + 1) / 2)) : opt.poses;
+  p.schedule = make_pose_schedule(all, k, resolve_clip(all, opt.pose_clip, name));
   snap_to_frames(p.schedule, frame_times(mesh));
   if (opt.pose_select_ga) {
     const auto candidates = candidate_frames(mesh, p.schedule.held_out);
-    if (candidates.size() >= 2) p.schedule.examples = select_poses_ga(mesh, candidates, size_t(opt.poses));
+    if (candidates.size() >= 2) p.schedule.examples = select_poses_ga(mesh, candidates, size_t(k));
   }
   p.examples = poses_at(skel, all, p.schedule.examples);
   // The bind pose too, unless asked not to: it is the pose every other tool judges, and a handful of
@@ -428,6 +431,8 @@ int run(const Options& opt) {
                      std::to_string(mesh.n_faces()) + " triangles");
   if (!clips(mesh).empty()) resolve_clip(clips(mesh), opt.pose_clip, opt.input);
   check_pose_budget(mesh, opt);
+  if (opt.keyframes > 0 && frame_times(mesh).empty())
+    throw UsageError("--keyframes: " + opt.input + " reads as a still mesh (its stored frames all have one shape)");
   // After the checks, so that a bad argument is one line. Always shown: they say what was changed or lost.
   for (const auto& w : rep.warnings) std::cerr << "skinned-decimate: warning: " << opt.input << ": " << w << "\n";
   if (!opt.segment.empty()) {
