@@ -24,9 +24,10 @@ namespace {
 namespace fs = std::filesystem;
 using namespace OpenMeshSkinned;
 
-// At most this many vertices and frames feed the GA's fitness and the segmentation's analysis.
+// At most this many vertices feed the GA's fitness, and this many frames (evenly thinned) the
+// segmentation, which keeps a deformation gradient per face and frame (72 bytes each).
 constexpr size_t kMaxFitnessVertices = 5000;
-constexpr size_t kMaxSegmentFrames = 60;
+constexpr size_t kMaxSegmentFrames = 32;
 
 bool stores_frames(const std::string& path) { return stored_frame_count(path) > 1; }
 
@@ -79,8 +80,9 @@ std::string segmentation_json_path(const std::string& glb) {
 
 void write_segmentation(const Mesh& mesh, const std::string& out, OutputSet& outputs) {
   std::vector<FramePoints> frames;
-  if (!frame_times(mesh).empty()) {
-    for (size_t f = 0; f < frame_times(mesh).size(); ++f) frames.push_back(frame_positions(mesh, f));
+  if (const size_t stored = frame_times(mesh).size(); stored > 0) {
+    const size_t n = std::min(kMaxSegmentFrames, stored);
+    for (size_t i = 0; i < n; ++i) frames.push_back(frame_positions(mesh, i * stored / n));
   } else if (!clips(mesh).empty()) {
     std::vector<PoseTime> times = candidate_frames(mesh, {});
     const size_t n = std::min(kMaxSegmentFrames, times.size());
@@ -115,6 +117,7 @@ void write_segmentation(const Mesh& mesh, const std::string& out, OutputSet& out
   nlohmann::ordered_json j = {{"parts", seg.parts},
                               {"frames_analysed", frames.size()},
                               {"feature_faces", seg.feature_faces},
+                              {"face_order", "the triangles as the tool read them (by mesh, then as stored)"},
                               {"face_part", seg.part},
                               {"method",
                                "Lee et al., near-rigid segmentation: eq. 4-6, feature faces 3.2, "
