@@ -157,3 +157,16 @@ TEST(CliFrames, PoseSelectGaSaysSoAndStillJudgesOnHeldOutFrames) {
   for (const auto& h : l["heldout_times"]) EXPECT_EQ(examples.count(h["time"].get<double>()), 0u);
   EXPECT_GE(examples.size(), 6u);
 }
+
+TEST(CliFrames, TheFrameMethodsHonourTheInfluenceCapOnSkinnedCharacters) {
+  const auto d = scratch("cap");
+  for (const char* method : {"frames", "deform"}) {
+    const auto r = cli(std::string("'") + OMSK_TEST_MODELS + "/X/Testwuson.X' -o w.glb --lods 0.5,0.25 --method " +
+                           method + " --max-influences 2 --report w.json --no-eval --quiet",
+                       d);
+    ASSERT_EQ(r.code, 0) << r.out;
+    nlohmann::json rep;
+    std::ifstream(d / "w.json") >> rep;
+    for (const auto& l : rep["lods"]) EXPECT_LE(l["max_influences"].get<int>(), 2) << method;
+  }
+}

@@ -148,11 +148,18 @@ std::vector<std::pair<Lod, Mesh>> build_chain(Mesh mesh, const std::vector<size_
       std::find_if(table().begin(), table().end(), [&](const MethodModules& t) { return method == t.method.name; });
   if (it == table().end()) throw std::logic_error("unknown method " + method);
   const size_t n_vertices_in = mesh.n_vertices();
+  // The frame methods never change a skin, so the cap is applied once, up front: each vertex keeps its
+  // heaviest --max-influences bones, renormalised (its trajectories are then those of the capped skin).
+  if (method == "frames" || method == "deform") {
+    const auto h = OpenMeshSkinned::influences_handle(mesh);
+    for (auto vh : mesh.vertices())
+      if (mesh.property(h, vh).size() > opt.max_influences) mesh.property(h, vh).keep_heaviest(opt.max_influences);
+  }
   // Held in an optional so that the solver's caches are freed before the last snapshot is taken.
   std::optional<Decimater> dec(std::in_place, mesh);
   Handles h;
   it->add(*dec, h);
-  // The endpoint methods never change a skin: the cap would only bring in the skinned solver.
+  // The frame methods' skins were capped above: the cap module would only bring in the skinned solver.
   if (!h.frame_fold.is_valid() && !h.frames.is_valid()) {
     dec->add(h.cap);
     dec->module(h.cap).set_max_influences(opt.max_influences);
