@@ -163,6 +163,43 @@ std::vector<std::vector<int>> pieces(const DualGraph& G, const std::vector<int>&
   return out;
 }
 
+// Eq. 7: a face goes to the part i that minimises min(distance to i's nearest feature face, average
+// distance to i's faces), repeated until no face moves (at most 10 rounds, as the paper reports). The
+// average over all of F_i would take all-pairs shortest paths (the paper's own memory limit); it is taken
+// over up to 24 faces of F_i spread through it (every k-th by index), fewer on large meshes so that a round
+// costs at most about 4e7 face visits.
+void refine_by_average_distance(const DualGraph& G, const std::vector<int>& features,
+                                const std::vector<int>& feature_part, int n_parts, std::vector<int>& part) {
+  const size_t nf = part.size();
+  const size_t samples = std::clamp<size_t>(size_t(4e7 / double(std::max<size_t>(1, nf * size_t(n_parts)))), 1, 24);
+  const double inf = std::numeric_limits<double>::infinity();
+  for (int round = 0; round < 10; ++round) {
+    std::vector<double> best(nf, inf);
+    std::vector<int> next(part);
+    for (int i = 0; i < n_parts; ++i) {
+      std::vector<int> mine, members;
+      for (size_t k = 0; k < features.size(); ++k)
+        if (feature_part[k] == i) mine.push_back(features[k]);
+      for (size_t f = 0; f < nf; ++f)
+        if (part[f] == i) members.push_back(int(f));
+      if (mine.empty() || members.empty()) continue;
+      const std::vector<double> to_feature = shortest_paths(G, mine);
+      std::vector<double> average(nf, 0.0);
+      const size_t m = std::min(samples, members.size());
+      for (size_t j = 0; j < m; ++j) {
+        const std::vector<double> d = shortest_paths(G, {members[j * members.size() / m]});
+        for (size_t f = 0; f < nf; ++f) average[f] += d[f] / double(m);
+      }
+      for (size_t f = 0; f < nf; ++f) {
+        const double c = std::min(to_feature[f], average[f]);
+        if (c < best[f]) best[f] = c, next[f] = i;
+      }
+    }
+    if (next == part) return;
+    part = std::move(next);
+  }
+}
+
 }  // namespace
 
 Segmentation segment_near_rigid(const SkinnedMesh& mesh, const FramePoints& ref, const std::vector<FramePoints>& frames,
@@ -245,8 +282,9 @@ Segmentation segment_near_rigid(const SkinnedMesh& mesh, const FramePoints& ref,
     std::map<int, int> part_of_feature;
     for (size_t i = 0; i < out.feature_faces.size(); ++i) part_of_feature[out.feature_faces[i]] = feature_part[i];
     for (size_t f = 0; f < nf; ++f) part[f] = origin[f] < 0 ? -1 : part_of_feature[origin[f]];
-    bool split = false;
     const int n_parts = *std::max_element(feature_part.begin(), feature_part.end()) + 1;
+    refine_by_average_distance(G, out.feature_faces, feature_part, n_parts, part);
+    bool split = false;
     for (int label = 0; label < n_parts; ++label) {
       const auto ps = pieces(G, part, label);
       bool first_with_features = true;

@@ -15,16 +15,16 @@
  *    animation keeps every pair apart) and otherwise starts a new part, and R moves to A; until R's area
  *    is under min_region_area of the whole. Pieces of the mesh that no face of A reaches (a separate rigid
  *    accessory) are each a region of their own first, whatever their size;
- *  - the clustering of eq. 6: every face goes to the part of its nearest feature face (shortest paths on
- *    the dual graph), and a part that falls apart into disconnected pieces (3.3, Fig. 4) is split: pieces
- *    holding feature faces become parts of their own, pieces without one join the neighbour they share
- *    most edges with.
+ *  - the clustering of 3.3: every face goes to the part of its nearest feature face (eq. 6, shortest paths
+ *    on the dual graph), then, round by round until no face moves, to the part i minimising min(distance
+ *    to i's nearest feature face, average distance to i's faces) (eq. 7); a part that falls apart into
+ *    disconnected pieces (Fig. 4) is split: pieces holding feature faces become parts of their own, pieces
+ *    without one join the neighbour they share most edges with.
  *
- *  Left out, and why: eq. 7's refinement by the average distance to all of a part's faces needs all-pairs
- *  shortest paths (the paper's own memory limit: F^2 distances), and the min-cut smoothing of the
- *  boundaries (3.4) is cosmetic; the cuts already run through the bending regions, which is what the
- *  decimation and the tests rely on. Shortest paths from the feature faces replace the all-pairs table:
- *  the same eq. 6 at O(F log F) per feature face.
+ *  Changed, and why: eq. 7's average over all of a part's faces needs all-pairs shortest paths (the
+ *  paper's own memory limit: F^2 distances); it is taken over up to 24 faces spread through the part.
+ *  Left out: the min-cut smoothing of the boundaries (3.4), which is cosmetic: the cuts already run
+ *  through the bending regions, which is what the decimation and the tests rely on.
  */
 
 #include "OpenMeshSkinned/Deform/DeformationAnalysis.hh"
