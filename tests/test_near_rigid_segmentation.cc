@@ -2,6 +2,7 @@
 #include "helpers.hh"
 
 #include <OpenMeshSkinned/Deform/NearRigidSegmentation.hh>
+#include <OpenMeshSkinned/IO/ImportFrames.hh>
 #include <OpenMeshSkinned/Skin/FrameAnimation.hh>
 
 #include <map>
@@ -78,4 +79,46 @@ TEST(NearRigidSegmentation, AMeshMovingRigidlyIsOnePart) {
     for (auto& p : frames[f]) p = R * p + Eigen::Vector3d(f, 0, 0);
   const Segmentation s = segment_near_rigid(mesh, frames[0], frames);
   EXPECT_EQ(s.parts, 1);
+}
+
+TEST(NearRigidSegmentation, TheMinimumCutShortensTheBoundariesAndKeepsThePartsWhole) {
+  Mesh mesh;
+  import_frame_animation({omsk_test::model("MD2/sydney.md2")}, mesh, {}, 10.0);
+  std::vector<FramePoints> frames;
+  for (size_t f = 0; f < frame_times(mesh).size(); f += 6) frames.push_back(frame_positions(mesh, f));
+  auto boundary = [&](const Segmentation& s) {
+    double len = 0.0;
+    for (auto eh : mesh.edges())
+      if (!mesh.is_boundary(eh) && s.part[mesh.face_handle(mesh.halfedge_handle(eh, 0)).idx()] !=
+                                       s.part[mesh.face_handle(mesh.halfedge_handle(eh, 1)).idx()])
+        len += mesh.calc_edge_length(eh);
+    return len;
+  };
+  SegmentationSettings rough;
+  rough.smoothing_hops = 0;
+  const Segmentation a = segment_near_rigid(mesh, frames[0], frames, rough);
+  const Segmentation b = segment_near_rigid(mesh, frames[0], frames);
+  EXPECT_EQ(a.parts, b.parts);
+  EXPECT_GT(b.parts, 8);
+  EXPECT_LT(boundary(b), 0.8 * boundary(a));
+  // Every part is one connected piece of faces.
+  for (int p = 0; p < b.parts; ++p) {
+    std::vector<char> seen(mesh.n_faces(), 0);
+    std::vector<Mesh::FaceHandle> stack;
+    for (auto fh : mesh.faces())
+      if (b.part[fh.idx()] == p) {
+        stack.push_back(fh);
+        seen[fh.idx()] = 1;
+        break;
+      }
+    size_t reached = 0;
+    while (!stack.empty()) {
+      const auto fh = stack.back();
+      stack.pop_back();
+      ++reached;
+      for (auto g : mesh.ff_range(fh))
+        if (b.part[g.idx()] == p && !seen[g.idx()]) seen[g.idx()] = 1, stack.push_back(g);
+    }
+    EXPECT_EQ(reached, size_t(std::count(b.part.begin(), b.part.end(), p))) << "part " << p;
+  }
 }

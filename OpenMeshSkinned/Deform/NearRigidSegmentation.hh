@@ -23,8 +23,10 @@
  *
  *  Changed, and why: eq. 7's average over all of a part's faces needs all-pairs shortest paths (the
  *  paper's own memory limit: F^2 distances); it is taken over up to 24 faces spread through the part.
- *  Left out: the min-cut smoothing of the boundaries (3.4), which is cosmetic: the cuts already run
- *  through the bending regions, which is what the decimation and the tests rely on.
+ *  The boundaries are then smoothed (3.4) by a minimum cut through a band around each (Boykov-Kolmogorov,
+ *  Boost); the extracted eq. 8 puts D/avg(D) itself into the capacity, which would make the cut avoid the
+ *  bending regions the prose says it follows, so the deformation term is Katz & Tal's 1 / (1 + D/avg(D))
+ *  (Lee's reference [15]).
  */
 
 #include "OpenMeshSkinned/Deform/DeformationAnalysis.hh"
@@ -39,6 +41,8 @@ struct SegmentationSettings {
   double epsilon = 0.5;           ///< set A: a face with a neighbour farther than this (the paper: 0.3 to 0.8)
   double gamma = 0.4;             ///< merge threshold on average gradients (the paper: 0.4 to 1.6)
   double min_region_area = 0.01;  ///< stop when an influence region has less of the total area
+  double alpha = 0.1;             ///< eq. 8: share of the deformation term in the cut's capacity (the paper: < 0.1)
+  int smoothing_hops = 3;         ///< 3.4: faces this many steps from a boundary may change side (0: no smoothing)
 };
 
 struct Segmentation {

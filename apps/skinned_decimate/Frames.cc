@@ -121,7 +121,7 @@ void write_segmentation(const Mesh& mesh, const std::string& out, OutputSet& out
                               {"face_part", seg.part},
                               {"method",
                                "Lee et al., near-rigid segmentation: eq. 4-6, feature faces 3.2, "
-                               "clustering 3.3 with eq. 7 over sampled faces (the min-cut smoothing left out)"}};
+                               "clustering 3.3 with eq. 7 over sampled faces, min-cut boundary smoothing 3.4"}};
   std::ofstream f(outputs.staging(segmentation_json_path(out)), std::ios::binary);
   f << j.dump(1) << "\n";
   f.close();
