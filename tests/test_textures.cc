@@ -7,6 +7,7 @@
 #include <OpenMeshSkinned/IO/ExportGltf.hh>
 #include <OpenMeshSkinned/IO/Import.hh>
 #include <OpenMeshSkinned/IO/Textures.hh>
+#include <OpenMeshSkinned/Skin/SkinProperties.hh>
 
 #include <gtest/gtest.h>
 
@@ -131,4 +132,18 @@ TEST(Textures, EncodeKeepsPngAndJpegAndRejectsGarbage) {
   EXPECT_EQ(img.mime_type, "image/jpeg");
   EXPECT_FALSE(encode_for_gltf({1, 2, 3, 4, 5, 6, 7, 8}, "a.bin", img, why));
   EXPECT_FALSE(why.empty());
+}
+
+TEST(Textures, AnMd2ThatNamesNoSkinTextureGetsTheOneImageNamedAfterIt) {
+  // faerie.md2 names no skin; faerie2.bmp lies beside it (BMP, so it is converted to PNG).
+  OpenMeshSkinned::SkinnedMesh mesh;
+  const auto rep = OpenMeshSkinned::import_skinned(std::string(OMSK_TEST_MODELS) + "/MD2/faerie.md2", mesh);
+  const auto& mats = OpenMeshSkinned::materials(mesh);
+  ASSERT_EQ(mats.size(), 1u);
+  EXPECT_EQ(mats[0].base_color_texture, "faerie2.bmp");
+  EXPECT_EQ(mats[0].base_color_image.mime_type, "image/png");
+  EXPECT_FALSE(mats[0].base_color_image.data.empty());
+  bool said = false;
+  for (const auto& w : rep.warnings) said |= w.find("using faerie2.bmp") != std::string::npos;
+  EXPECT_TRUE(said);
 }

@@ -219,9 +219,8 @@ ImportReport detail::import_scene(const std::string& path, const std::string& re
   rep.rigid = !joints.any_bones();
   if (rep.rigid) rep.warnings.push_back("no skin in the file: every mesh is bound rigidly to its node");
 
-  const std::string source_dir = fs::absolute(fs::path(path)).parent_path().string();
   for (unsigned m = 0; m < scene->mNumMaterials; ++m)
-    materials(mesh).push_back(read_material(scene, scene->mMaterials[m], source_dir, rep.warnings));
+    materials(mesh).push_back(read_material(scene, scene->mMaterials[m], path, rep.warnings));
   const std::vector<size_t> target_base = read_morph_targets(scene, instances, mesh, path);
   rep.morph_targets = morph_targets(mesh).size();
   {

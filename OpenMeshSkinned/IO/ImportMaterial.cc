@@ -3,12 +3,45 @@
 #include "OpenMeshSkinned/IO/Textures.hh"
 
 #include <assimp/material.h>
+
 #include <assimp/scene.h>
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
 
 namespace OpenMeshSkinned {
 
-Material read_material(const aiScene* scene, const aiMaterial* m, const std::string& source_dir,
+namespace {
+
+// assimp's MD2/MDL readers name this texture when the file names no skin (Quake keeps skins beside the
+// model, under names the model does not store).
+constexpr const char* kNoSkinPlaceholder = "$texture_dummy.bmp";
+
+// The one image beside \p source whose name starts with the model's (faerie.md2: faerie2.bmp); empty when
+// there is none or more than one (\p found lists them).
+std::string image_named_after(const std::string& source, std::vector<std::string>& found) {
+  namespace fs = std::filesystem;
+  auto lower = [](std::string x) {
+    for (char& c : x) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return x;
+  };
+  const fs::path src = fs::absolute(fs::path(source));
+  const std::string stem = lower(src.stem().string());
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(src.parent_path(), ec)) {
+    const std::string ext = lower(e.path().extension().string());
+    if (ext != ".png" && ext != ".jpg" && ext != ".jpeg" && ext != ".bmp" && ext != ".tga") continue;
+    if (lower(e.path().stem().string()).rfind(stem, 0) == 0) found.push_back(e.path().filename().string());
+  }
+  std::sort(found.begin(), found.end());
+  return found.size() == 1 ? found[0] : std::string();
+}
+
+}  // namespace
+
+Material read_material(const aiScene* scene, const aiMaterial* m, const std::string& source,
                        std::vector<std::string>& warnings) {
+  const std::string source_dir = std::filesystem::absolute(std::filesystem::path(source)).parent_path().string();
   Material out;
   aiString name;
   if (m->Get(AI_MATKEY_NAME, name) == AI_SUCCESS) out.name = name.C_Str();
@@ -42,6 +75,24 @@ Material read_material(const aiScene* scene, const aiMaterial* m, const std::str
       ok = encode_rgba_png(rgba.data(), et->mWidth, et->mHeight, name, out.base_color_image);
       if (!ok) problem = "could not be encoded as PNG";
     }
+  } else if (out.base_color_texture == kNoSkinPlaceholder) {
+    std::vector<std::string> found;
+    const std::string guess = image_named_after(source, found);
+    if (!guess.empty() && read_texture_file(guess, source_dir, out.base_color_image, problem)) {
+      warnings.push_back("the file names no skin texture: using " + guess +
+                         ", the one image beside it named after the model");
+      out.base_color_texture = guess;
+      return out;
+    }
+    std::string listed;
+    for (const auto& f : found) listed += (listed.empty() ? "" : ", ") + f;
+    problem =
+        found.empty()   ? "stands for a skin texture the file does not name, and no image beside it is named after the "
+                          "model"
+        : guess.empty() ? "stands for a skin texture the file does not name, and several images beside it are named "
+                          "after the model (" +
+                              listed + ")"
+                        : problem;
   } else {
     ok = read_texture_file(out.base_color_texture, source_dir, out.base_color_image, problem);
   }

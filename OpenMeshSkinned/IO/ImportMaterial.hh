@@ -15,8 +15,9 @@ struct aiMaterial;
 namespace OpenMeshSkinned {
 
 /// Reads \p m of \p scene; a texture that cannot be found or read adds a line to \p warnings and the
-/// material is kept without it. \p source_dir is the folder of the file being read.
-Material read_material(const aiScene* scene, const aiMaterial* m, const std::string& source_dir,
+/// material is kept without it. \p source is the file being read (its folder is where textures are
+/// looked for).
+Material read_material(const aiScene* scene, const aiMaterial* m, const std::string& source,
                        std::vector<std::string>& warnings);
 
 }  // namespace OpenMeshSkinned
