@@ -1,5 +1,6 @@
 #include "helpers.hh"
 
+#include <OpenMeshSkinned/Decimater/LazyDecimaterT.hh>
 #include <OpenMeshSkinned/Mesh/Procedural.hh>
 
 #include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
@@ -158,4 +159,38 @@ TEST(ModSkinnedQuadric, MovedVerticesKeepTheirTextureMapping) {
   // left the original surface (the bumps are 0.05 high).
   ::testing::Test::RecordProperty("worst_uv_error", std::to_string(worst));
   EXPECT_LT(worst, 0.005);
+}
+
+template <typename Driver>
+void per_area_against_energy() {
+  // Testwuson to 25%: the paper's energy makes the horn tips cheap (small faces, far from the rest); per
+  // area they cost their distance. Judged in frames the decimater never saw.
+  using namespace OpenMeshSkinned;
+  const Mesh original = omsk_test::load_character("X/Testwuson.X", 8);
+  std::vector<Pose> held;
+  for (int i = 0; i < 7; ++i)
+    held.push_back(sample_pose(skeleton(original), clips(original)[0], clips(original)[0].duration * (i + 0.5) / 8));
+  auto worst = [&](bool per_area) {
+    Mesh mesh = original;
+    Driver dec(mesh);
+    omsk_test::SkinnedModules<Driver> m(dec);
+    dec.module(m.quadric).set_error_per_area(per_area);
+    EXPECT_EQ(dec.module(m.quadric).error_per_area(), per_area);
+    EXPECT_TRUE(dec.initialize());
+    dec.decimate_to_faces(0, original.n_faces() / 4);
+    mesh.garbage_collection();
+    double h = 0.0;
+    for (const Pose& p : held)
+      h = std::max(h, surface_distance(posed_soup(original, p), posed_soup(mesh, p), 20000).hausdorff);
+    return h / bbox_diagonal(original);
+  };
+  const double energy = worst(false), per_area = worst(true);
+  std::printf("held-out Hausdorff at 25%%: %.4f%% by energy, %.4f%% per area\n", 100 * energy, 100 * per_area);
+  EXPECT_LT(per_area, 0.7 * energy);
+}
+
+// Under the lazy driver (the tool's). Under DecimaterT, whose stale-verdict handling locks and defers
+// vertices, it measured worse at 50% and 25% (ModSkinnedQuadricT.hh).
+TEST(ModSkinnedQuadric, PricingPerAreaKeepsTheWorstCaseDownOnARealCharacter) {
+  per_area_against_energy<OpenMeshSkinned::LazyDecimaterT<Mesh>>();
 }

@@ -247,7 +247,8 @@ public:
   }
   /// Whether \p ci cannot win over a legal collapse already priced for the same v0 (its checks can be skipped).
   bool cannot_win(const CollapseInfo& ci) {
-    return !checks_at_pop_ && settings_.placement && stale_.has_legal(ci.v0) && solve(ci).error >= stale_.best_error();
+    return !checks_at_pop_ && settings_.placement && stale_.has_legal(ci.v0) &&
+           settings_.priority(solve(ci)) >= stale_.best_error();
   }
 
   // ---- collapse (every module forwards its pre/postprocess; the first call does the work) ----------------

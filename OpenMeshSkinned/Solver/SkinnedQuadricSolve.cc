@@ -138,6 +138,8 @@ void solve_collapse(const EdgeProblem& p, const SolveSettings& s, WeightSolver& 
   out.valid = v.allFinite() && std::isfinite(e);
   out.position = v;
   out.error = e;
+  out.area = 0.0;
+  for (const PoseQuadric& q : p.quadric) out.area += q.A().trace() / std::max(1, p.poses);
   out.weights = to_influences(p, a);
 }
 

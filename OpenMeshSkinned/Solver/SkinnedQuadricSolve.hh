@@ -30,7 +30,10 @@ struct CollapseResult {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< rest-pose position of the merged vertex
   Influences weights;                                  ///< its skin, within the cap
   double error = 0.0;                                  ///< quartic error E(position, weights), >= 0
-  bool valid = false;                                  ///< false when the solve produced nothing finite
+  /// The area the endpoints' quadrics stand for (the trace of their summed plane matrices, averaged over
+  /// the poses): error / area is a mean squared distance (ModSkinnedQuadricT::set_error_per_area).
+  double area = 0.0;
+  bool valid = false;  ///< false when the solve produced nothing finite
 };
 
 /// The settings the kernel reads (the rest of SolverSettings is the mesh-facing solver's).

@@ -17,6 +17,13 @@ struct SolverSettings : SolveSettings {
   bool fold_check = false;
   /// Smallest allowed cosine between a face's normals before and after a collapse, in every pose.
   double fold_cos = 0.0;
+  /// Whether collapses are priced by error / area (ModSkinnedQuadricT::set_error_per_area).
+  bool error_per_area = false;
+
+  /// The priority of a solved collapse: its error, or its error per area.
+  double priority(const CollapseResult& r) const {
+    return error_per_area ? (r.area > 0.0 ? r.error / r.area : 0.0) : r.error;
+  }
 
   /// Whether two settings give the same edge answers (the edge cache survives a change of the others).
   bool same_answers(const SolverSettings& o) const {

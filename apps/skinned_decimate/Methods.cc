@@ -168,6 +168,7 @@ std::vector<std::pair<Lod, Mesh>> build_chain(Mesh mesh, const std::vector<size_
     dec->add(h.guard);
     dec->module(h.guard).set_tau(opt.joint_guard);
   }
+  if (h.skinned.is_valid()) dec->module(h.skinned).set_error_per_area(!opt.energy_error);
   if (opt.threads > 0) dec->set_threads(opt.threads);
   if (!dec->initialize()) throw std::runtime_error("the decimater did not initialize");
   Progress progress(!opt.quiet && isatty(2), n_vertices_in - targets.back() / 2, label);

@@ -112,6 +112,12 @@ int main(int argc, char** argv) {
   app.add_option("--segment", opt.segment,
                  "Write the input cut into near-rigid parts (Lee et al.) as OUT.glb, one colour per part, and "
                  "the parts of its faces as OUT.json; without -o nothing is decimated");
+  std::string error_measure = "per-area";
+  app.add_option("--error", error_measure,
+                 "How the skinned method prices a collapse: per-area (its error over the area it stands for, a "
+                 "mean squared distance; default: keeps small sharp features, lowers the worst case) or energy "
+                 "(Landreneau & Schaefer's quartic energy as it is)")
+      ->check(CLI::IsMember({"per-area", "energy"}));
   app.add_flag("!--no-eval", opt.evaluate,
                "Skip measuring the error in held-out frames (batch use: the table shows triangles and time only)");
   try {
@@ -125,6 +131,7 @@ int main(int argc, char** argv) {
   opt.html_beside = assets == "beside";
   opt.anim_frames = anim_method == "frames";
   opt.pose_select_ga = pose_select == "ga";
+  opt.energy_error = error_measure == "energy";
   opt.method_given = app.count("--method") > 0;
   opt.poses_given = app.count("--poses") > 0;
   opt.ratio_given = app.count("--ratio") > 0;
