@@ -20,7 +20,7 @@ done
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 "$bench" --write wuson8 "$work/wuson8.glb" >/dev/null
-"$cli" /usr/share/assimp/models/FBX/animation_with_skeleton.fbx -o "$work/fbx.glb" --ratio 1 --max-influences 8 \
+"$cli" /usr/share/assimp/models/FBX/animation_with_skeleton.fbx -o "$work/fbx.glb" --ratio 1 --max-influences 8 --no-refit \
   --quiet --no-eval >/dev/null 2>&1
 field() { grep "\"candidate\":\"$2\"" "$1" | grep -o "\"$3\":[0-9.e+-]*" | cut -d: -f2; }
 printf '%-8s %4s | %12s %12s %7s | %12s %12s %7s\n' character cap "trunc RMS%" "ours RMS%" ratio "trunc Haus%" \
@@ -28,7 +28,8 @@ printf '%-8s %4s | %12s %12s %7s | %12s %12s %7s\n' character cap "trunc RMS%" "
 for in in "$work/wuson8.glb" "$work/fbx.glb"; do
   for c in $caps; do
     "$cli" "$in" -o "$work/ours.glb" --ratio 1 --max-influences "$c" --quiet --no-eval >/dev/null 2>&1
-    "$cli" "$in" -o "$work/trunc.glb" --ratio 1 --max-influences "$c" --method frames --quiet --no-eval >/dev/null 2>&1
+    "$cli" "$in" -o "$work/trunc.glb" --ratio 1 --max-influences "$c" --method frames --no-refit --quiet --no-eval \
+      >/dev/null 2>&1
     "$peer" "$in" "$work/trunc.glb" "$work/ours.glb" >"$work/peer.jsonl"
     tr=$(field "$work/peer.jsonl" "$work/trunc.glb" heldout_rms)
     or=$(field "$work/peer.jsonl" "$work/ours.glb" heldout_rms)

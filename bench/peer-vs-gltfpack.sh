@@ -9,7 +9,7 @@
 # (converted once by skinned-decimate --ratio 1), glTF2/simple_skin, DeCoro's leg and the L&S column
 # (omsk-bench --write), and wuson8: Testwuson with its skin diffused over 8 bones (three rounds of
 # Laplacian smoothing of the weight field, 8 heaviest kept, renormalised: OpenMeshSkinned::diffuse_skin_weights).
-# gltfpack runs twice: -se 1 (no error limit: it reaches the ratio) and with its default error limit
+# OMSK_PEER_EXTRA adds arguments to ours (e.g. OMSK_PEER_EXTRA=--no-refit). gltfpack runs twice: -se 1 (no error limit: it reaches the ratio) and with its default error limit
 # (it may stop early; ours is then asked for the same, larger, count: light simplification).
 # faerie and sydney: Quake MD2 characters animated without a skeleton (198 stored frames each, read by
 # skinned-decimate into one morph-target clip and written with --ratio 1); ours decimates them with its
@@ -28,10 +28,10 @@ done
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-"$cli" "$models/X/Testwuson.X" -o "$work/wuson.glb" --ratio 1 --quiet --no-eval >/dev/null
-"$cli" "$models/FBX/animation_with_skeleton.fbx" -o "$work/fbx.glb" --ratio 1 --quiet --no-eval >/dev/null 2>&1
+"$cli" "$models/X/Testwuson.X" -o "$work/wuson.glb" --ratio 1 --no-refit --quiet --no-eval >/dev/null
+"$cli" "$models/FBX/animation_with_skeleton.fbx" -o "$work/fbx.glb" --ratio 1 --no-refit --quiet --no-eval >/dev/null 2>&1
 for m in faerie sydney; do
-  "$cli" "$models/MD2/$m.md2" -o "$work/$m.glb" --ratio 1 --quiet --no-eval >/dev/null 2>&1
+  "$cli" "$models/MD2/$m.md2" -o "$work/$m.glb" --ratio 1 --no-refit --quiet --no-eval >/dev/null 2>&1
 done
 "$bench" --write leg "$work/leg.glb"
 "$bench" --write column "$work/column.glb"
@@ -57,7 +57,7 @@ for in in "${inputs[@]}"; do
         printf '%-14s %-9s %6s   gltfpack kept no triangle\n' "$name" "$mode" "$r"
         continue
       fi
-      "$cli" "$in" -o "$work/ours.glb" --faces "$n" --quiet --no-eval >"$work/ours.log" 2>&1 ||
+      "$cli" "$in" -o "$work/ours.glb" --faces "$n" --quiet --no-eval ${OMSK_PEER_EXTRA:-} >"$work/ours.log" 2>&1 ||
         { echo "peer-vs-gltfpack: skinned-decimate failed on $in:" >&2; cat "$work/ours.log" >&2; exit 1; }
       "$peer" "$in" "$work/gp.glb" "$work/ours.glb" >"$work/peer.jsonl"
       gr=$(field "$work/peer.jsonl" "$work/gp.glb" heldout_rms)

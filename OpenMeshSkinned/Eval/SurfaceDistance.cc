@@ -71,13 +71,14 @@ struct MeasuredSurface::Impl {
   std::vector<Point> samples;
 };
 
-MeasuredSurface::MeasuredSurface(const TriangleSoup& soup, size_t n, uint64_t seed) : impl_(std::make_unique<Impl>()) {
+MeasuredSurface::MeasuredSurface(const TriangleSoup& soup, size_t n, uint64_t seed, bool accelerate)
+    : impl_(std::make_unique<Impl>()) {
   std::mt19937_64 rng(seed);
   impl_->samples = samples(soup, n, rng);
   impl_->triangles = to_cgal(soup);
   if (impl_->triangles.empty()) return;
   impl_->tree = std::make_unique<Tree>(impl_->triangles.begin(), impl_->triangles.end());
-  impl_->tree->accelerate_distance_queries();
+  if (accelerate) impl_->tree->accelerate_distance_queries();
 }
 MeasuredSurface::~MeasuredSurface() = default;
 

@@ -33,7 +33,9 @@ struct SurfaceDistance {
  *  is built once per frame and measured against every LOD and method; safe to share between threads. */
 class MeasuredSurface {
 public:
-  MeasuredSurface(const TriangleSoup& soup, size_t samples, uint64_t seed);
+  /// \p accelerate: build CGAL's search tree for fast distance queries (worth it for many queries; a few
+  /// thousand queries on a large surface are cheaper without).
+  MeasuredSurface(const TriangleSoup& soup, size_t samples, uint64_t seed, bool accelerate = true);
   ~MeasuredSurface();
   MeasuredSurface(MeasuredSurface&&) noexcept;
   MeasuredSurface& operator=(MeasuredSurface&&) noexcept;

@@ -43,6 +43,7 @@ struct Options {
   size_t keyframes = 0;         // --keyframes K: keep K frames of a frame animation, chosen by the GA (0: all)
   bool pose_select_ga = false;  // --pose-select ga: example poses chosen by the key-frame GA
   std::string segment;          // --segment OUT.glb: near-rigid parts, coloured, and OUT.json
+  bool refit = true;            // final fit of the LOD's rest positions in the example poses (--no-refit: off)
   bool energy_error = false;  // --error energy: the paper's quartic energy as the skinned priority (default: per area)
 };
 

@@ -15,6 +15,7 @@
 #include <OpenMeshSkinned/Skin/FrameAnimation.hh>
 #include <OpenMeshSkinned/Skin/KeyReduction.hh>
 #include <OpenMeshSkinned/Skin/PoseSchedule.hh>
+#include <OpenMeshSkinned/Solver/Refit.hh>
 #include <OpenMeshSkinned/Solver/SkeletonLodT.hh>
 
 #include <unistd.h>
@@ -213,6 +214,14 @@ json run_character(const Mesh& mesh, const std::string& name, const Options& opt
   choose_targets(mesh, opt, ratios, targets);
   const auto t0 = Clock::now();
   auto chain = build_chain(std::move(work), targets, ratios, opt, method, name + " (" + method + ")");
+  if (opt.refit)
+    for (auto& [lod, lmesh] : chain) {
+      const auto tr = Clock::now();
+      const RefitReport r = refit_positions(lmesh, mesh, poses.examples);
+      if (!opt.quiet)
+        std::cout << "refit " << fmt(100.0 * lod.ratio, 1) << "%: residual " << r.before << " -> " << r.after << " ("
+                  << r.rounds << " rounds, " << fmt(seconds(tr, Clock::now()), 2) << " s)\n";
+    }
   const auto t1 = Clock::now();
   const bool want_html = html != nullptr;
   // Skeleton LoD (--max-joints), then motion LoD (--anim-error: clips thinned as far as the LOD's own skinned

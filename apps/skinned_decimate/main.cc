@@ -118,6 +118,9 @@ int main(int argc, char** argv) {
                  "mean squared distance; default: keeps small sharp features, lowers the worst case) or energy "
                  "(Landreneau & Schaefer's quartic energy as it is)")
       ->check(CLI::IsMember({"per-area", "energy"}));
+  app.add_flag("!--no-refit", opt.refit,
+               "Skip the final fit (by default every LOD vertex's rest position is refitted against the original "
+               "surface in all example poses: sparse least squares, three rounds)");
   app.add_flag("!--no-eval", opt.evaluate,
                "Skip measuring the error in held-out frames (batch use: the table shows triangles and time only)");
   try {

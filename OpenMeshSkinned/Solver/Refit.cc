@@ -1,0 +1,212 @@
+#include "OpenMeshSkinned/Solver/Refit.hh"
+
+#include "OpenMeshSkinned/Eval/SurfaceDistance.hh"
+#include "OpenMeshSkinned/Mesh/ClosestPoint.hh"
+#include "OpenMeshSkinned/Skin/LinearBlendSkinning.hh"
+#include "OpenMeshSkinned/Skin/Morph.hh"
+#include "OpenMeshSkinned/Skin/SkinProperties.hh"
+
+#include <Eigen/Sparse>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <memory>
+#include <thread>
+#include <unordered_map>
+
+namespace OpenMeshSkinned {
+
+namespace {
+
+// Posed position of a vertex as an affine function of its rest position: y = A x + c.
+struct AffineVertex {
+  Eigen::Matrix3d A;
+  Eigen::Vector3d c;
+};
+
+std::vector<AffineVertex> affine_skin(const SkinnedMesh& mesh, const Pose& pose) {
+  const auto h = influences_handle(mesh);
+  OpenMesh::VPropHandleT<MorphDeltas> hd;
+  const bool morph = !pose.morph_weights.empty() && morph_deltas_handle(mesh, hd);
+  std::vector<AffineVertex> out(mesh.n_vertices());
+  for (auto vh : mesh.vertices()) {
+    const Influences& w = mesh.property(h, vh);
+    const Eigen::Vector3d t = skin_point(Eigen::Vector3d::Zero(), w, pose);
+    AffineVertex& a = out[vh.idx()];
+    for (int i = 0; i < 3; ++i) a.A.col(i) = skin_point(Eigen::Vector3d::Unit(i), w, pose) - t;
+    const Eigen::Vector3d d = morph ? apply_morph(Eigen::Vector3d::Zero(), mesh.property(hd, vh), pose.morph_weights)
+                                    : Eigen::Vector3d::Zero();
+    a.c = a.A * d + t;
+  }
+  return out;
+}
+
+// Accumulates the normal equations of residuals sum_k b_k (A_k x_k + c_k) - target, 3x3 block by block (a
+// residual touches at most three vertices, so a block per pair of vertices that share a triangle).
+struct Normal {
+  std::unordered_map<uint64_t, Eigen::Matrix3d> blocks;
+  Eigen::VectorXd rhs;
+  double sum_sq = 0.0;
+  size_t n = 0;
+  void add(const int* v, const double* b, int m, const std::vector<AffineVertex>& av,
+           const std::vector<Eigen::Vector3d>& x, const Eigen::Vector3d& target) {
+    Eigen::Vector3d r = -target;
+    for (int i = 0; i < m; ++i) r += b[i] * (av[v[i]].A * x[v[i]] + av[v[i]].c);
+    sum_sq += r.squaredNorm();
+    ++n;
+    // J_i = b_i A_i; the step solves J^T J dx = -J^T r.
+    Eigen::Matrix3d J[3];
+    for (int i = 0; i < m; ++i) J[i] = b[i] * av[v[i]].A;
+    for (int i = 0; i < m; ++i) {
+      rhs.segment<3>(3 * v[i]) -= J[i].transpose() * r;
+      for (int j = 0; j < m; ++j) {
+        const uint64_t key = uint64_t(uint32_t(v[i])) << 32 | uint32_t(v[j]);
+        auto it = blocks.try_emplace(key, Eigen::Matrix3d::Zero()).first;
+        it->second += J[i].transpose() * J[j];
+      }
+    }
+  }
+  void add_diagonal(size_t v, double lambda) {
+    const uint64_t key = uint64_t(v) << 32 | uint32_t(v);
+    blocks.try_emplace(key, Eigen::Matrix3d::Zero()).first->second += lambda * Eigen::Matrix3d::Identity();
+  }
+  Eigen::SparseMatrix<double> matrix(size_t nv) const {
+    std::vector<Eigen::Triplet<double>> t;
+    t.reserve(blocks.size() * 9);
+    for (const auto& [key, B] : blocks) {
+      const long i = long(key >> 32), j = long(key & 0xffffffffu);
+      for (int a = 0; a < 3; ++a)
+        for (int c = 0; c < 3; ++c) t.emplace_back(3 * i + a, 3 * j + c, B(a, c));
+    }
+    Eigen::SparseMatrix<double> M(long(3 * nv), long(3 * nv));
+    M.setFromTriplets(t.begin(), t.end());
+    return M;
+  }
+};
+
+// Whether some face turns by more than 90 degrees, in some pose, between \p a and \p b (posed positions).
+bool folds(const SkinnedMesh& mesh, const std::vector<std::vector<Eigen::Vector3d>>& a,
+           const std::vector<std::vector<Eigen::Vector3d>>& b) {
+  for (size_t j = 0; j < a.size(); ++j) {
+    const auto na = skin_face_normals(mesh, a[j]), nb = skin_face_normals(mesh, b[j]);
+    for (auto fh : mesh.faces())
+      if (na[fh.idx()].squaredNorm() > 0.0 && na[fh.idx()].dot(nb[fh.idx()]) <= 0.0) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const std::vector<Pose>& poses,
+                            const RefitSettings& settings) {
+  RefitReport report;
+  if (poses.empty() || lod.n_faces() == 0) return report;
+  const size_t nv = lod.n_vertices();
+  // The posed original's trees, one per pose, built in parallel (on a large mesh they are most of the work).
+  std::vector<TriangleSoup> originals(poses.size());
+  std::vector<std::unique_ptr<MeasuredSurface>> original_surfaces(poses.size());
+  {
+    std::atomic<size_t> next{0};
+    auto work = [&] {
+      for (size_t j = next++; j < poses.size(); j = next++) {
+        originals[j] = posed_soup(original, poses[j]);
+        original_surfaces[j] = std::make_unique<MeasuredSurface>(originals[j], 0, 1, false);
+      }
+    };
+    std::vector<std::thread> pool;
+    const size_t n = std::min<size_t>(poses.size(), std::max(1u, std::thread::hardware_concurrency()));
+    for (size_t t = 1; t < n; ++t) pool.emplace_back(work);
+    work();
+    for (auto& th : pool) th.join();
+  }
+  std::vector<Eigen::Vector3d> x0(nv);
+  for (auto vh : lod.vertices()) x0[vh.idx()] = to_eigen(lod.point(vh));
+  // Folds are judged against the decimated LOD, not round by round: small turns must not add up.
+  std::vector<std::vector<Eigen::Vector3d>> posed_initial;
+  for (const Pose& p : poses) posed_initial.push_back(skin_positions(lod, p));
+  for (int round = 0; round < settings.rounds; ++round) {
+    std::vector<Eigen::Vector3d> x(nv);
+    for (auto vh : lod.vertices()) x[vh.idx()] = to_eigen(lod.point(vh));
+    Normal ne;
+    ne.rhs = Eigen::VectorXd::Zero(long(3 * nv));
+    for (size_t j = 0; j < poses.size(); ++j) {
+      const std::vector<AffineVertex> av = affine_skin(lod, poses[j]);
+      const TriangleSoup lsoup = posed_soup(lod, poses[j]);
+      const MeasuredSurface lsurf(lsoup, 0, 1);
+      const TriangleSoup& osoup = originals[j];
+      // The original's vertices and centroids onto the LOD.
+      auto onto_lod = [&](const Eigen::Vector3d& s) {
+        int tri = -1;
+        lsurf.distance(s, tri);
+        if (tri < 0) return;
+        const auto& T = lsoup.triangles[tri];
+        const Eigen::Vector3d corners[3] = {lsoup.points[T[0]], lsoup.points[T[1]], lsoup.points[T[2]]};
+        Eigen::Vector3d bary;
+        closest_barycentric(corners, s, bary);
+        ne.add(T.data(), bary.data(), 3, av, x, s);
+      };
+      const size_t total = osoup.points.size() + osoup.triangles.size();
+      const size_t stride =
+          std::max<size_t>(1, (total + settings.max_samples - 1) / std::max<size_t>(1, settings.max_samples));
+      for (size_t i = 0; i < total; i += stride) {
+        if (i < osoup.points.size()) {
+          onto_lod(osoup.points[i]);
+        } else {
+          const auto& T = osoup.triangles[i - osoup.points.size()];
+          onto_lod((osoup.points[T[0]] + osoup.points[T[1]] + osoup.points[T[2]]) / 3.0);
+        }
+      }
+      // The LOD's vertices onto the original.
+      for (auto vh : lod.vertices()) {
+        const Eigen::Vector3d& y = lsoup.points[vh.idx()];
+        int tri = -1;
+        original_surfaces[j]->distance(y, tri);
+        if (tri < 0) continue;
+        const auto& T = osoup.triangles[tri];
+        const Eigen::Vector3d corners[3] = {osoup.points[T[0]], osoup.points[T[1]], osoup.points[T[2]]};
+        Eigen::Vector3d bary;
+        closest_barycentric(corners, y, bary);
+        const int v = vh.idx();
+        const double one = 1.0;
+        ne.add(&v, &one, 1, av, x, bary[0] * corners[0] + bary[1] * corners[1] + bary[2] * corners[2]);
+      }
+    }
+    const double rms = std::sqrt(ne.sum_sq / std::max<size_t>(1, ne.n));
+    if (round == 0) report.before = rms;
+    report.after = rms;
+    // The pull toward the decimated positions, scaled like one residual per pose.
+    const double lambda = settings.regularization * double(poses.size());
+    for (size_t v = 0; v < nv; ++v) {
+      ne.add_diagonal(v, lambda);
+      ne.rhs.segment<3>(long(3 * v)) -= lambda * (x[v] - x0[v]);
+    }
+    const Eigen::SparseMatrix<double> JtJ = ne.matrix(nv);
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(JtJ);
+    if (solver.info() != Eigen::Success) break;
+    const Eigen::VectorXd dx = solver.solve(ne.rhs);
+    if (solver.info() != Eigen::Success || !dx.allFinite()) break;
+    // Halve the step until no face folds in any pose.
+    double step = 1.0;
+    bool moved = false;
+    for (int tries = 0; tries < 6 && !moved; ++tries, step *= 0.5) {
+      for (auto vh : lod.vertices()) {
+        const int v = vh.idx();
+        const Eigen::Vector3d p = x[v] + step * dx.segment<3>(3 * v);
+        lod.set_point(vh, SkinnedMesh::Point(p.x(), p.y(), p.z()));
+      }
+      std::vector<std::vector<Eigen::Vector3d>> posed_after;
+      for (const Pose& p : poses) posed_after.push_back(skin_positions(lod, p));
+      moved = !folds(lod, posed_initial, posed_after);
+    }
+    if (!moved) {
+      for (auto vh : lod.vertices())
+        lod.set_point(vh, SkinnedMesh::Point(x[vh.idx()].x(), x[vh.idx()].y(), x[vh.idx()].z()));
+      break;
+    }
+    ++report.rounds;
+  }
+  return report;
+}
+
+}  // namespace OpenMeshSkinned

@@ -1,0 +1,38 @@
+#pragma once
+/** \file Refit.hh
+ *  A final fit after decimation: every LOD vertex's rest position re-optimised against the original surface
+ *  in all example poses at once. With the skins fixed, a posed vertex is an affine function of its rest
+ *  position (morph offsets and linear blend skinning), so with the correspondences fixed the fit is one
+ *  sparse linear least-squares problem; correspondences are then found again, a few rounds.
+ *
+ *  Residuals, in every example pose: each original vertex and triangle centroid to its closest point on the
+ *  posed LOD (the LOD must cover the original), and each LOD vertex to its closest point on the posed
+ *  original (the LOD must not leave it), plus a small pull toward the decimated positions (so that
+ *  directions nothing constrains stay put). A round whose positions would turn a face by more than 90
+ *  degrees in some pose is halved until none does.
+ */
+
+#include "OpenMeshSkinned/Mesh/SkinnedMesh.hh"
+#include "OpenMeshSkinned/Skin/Skeleton.hh"
+
+#include <vector>
+
+namespace OpenMeshSkinned {
+
+struct RefitSettings {
+  int rounds = 3;
+  double regularization = 1e-3;  ///< weight of the pull toward the decimated position, relative to one residual
+  size_t max_samples = 20000;    ///< original points (vertices, then centroids) per pose at most, evenly strided
+};
+
+struct RefitReport {
+  double before = 0.0, after = 0.0;  ///< RMS of the residuals over the example poses, mesh units
+  int rounds = 0;                    ///< rounds that moved the vertices
+};
+
+/// Refits \p lod (a decimation of \p original, garbage-collected) in \p poses. Skins, UVs and morph
+/// offsets are kept; only rest positions move.
+RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const std::vector<Pose>& poses,
+                            const RefitSettings& settings = {});
+
+}  // namespace OpenMeshSkinned
