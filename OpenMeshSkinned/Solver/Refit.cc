@@ -103,22 +103,35 @@ RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const
   RefitReport report;
   if (poses.empty() || lod.n_faces() == 0) return report;
   const size_t nv = lod.n_vertices();
-  // The posed original's trees, one per pose, built in parallel (on a large mesh they are most of the work).
-  std::vector<TriangleSoup> originals(poses.size());
-  std::vector<std::unique_ptr<MeasuredSurface>> original_surfaces(poses.size());
-  {
-    std::atomic<size_t> next{0};
-    auto work = [&] {
-      for (size_t j = next++; j < poses.size(); j = next++) {
-        originals[j] = posed_soup(original, poses[j]);
-        original_surfaces[j] = std::make_unique<MeasuredSurface>(originals[j], 0, 1, false);
-      }
-    };
-    std::vector<std::thread> pool;
-    const size_t n = std::min<size_t>(poses.size(), std::max(1u, std::thread::hardware_concurrency()));
-    for (size_t t = 1; t < n; ++t) pool.emplace_back(work);
-    work();
-    for (auto& th : pool) th.join();
+  // Where each LOD vertex lies on the posed original, per pose, found once from the decimated LOD (a tree
+  // per pose, one at a time, so memory stays one tree however many poses); the LOD must not leave those
+  // points. (Found in the rest shape instead, a vertex where two parts touch at rest, a helmet on a head,
+  // could be tied to the wrong one.)
+  std::vector<std::vector<Eigen::Vector3d>> target(poses.size(), std::vector<Eigen::Vector3d>(nv));
+  std::vector<std::vector<char>> has_target(poses.size(), std::vector<char>(nv, 0));
+  TriangleSoup rest;
+  for (auto fh : original.faces()) {
+    auto fv = original.cfv_iter(fh);
+    const int a = (fv++)->idx(), b = (fv++)->idx(), c = fv->idx();
+    rest.triangles.push_back({a, b, c});
+  }
+  for (size_t j = 0; j < poses.size(); ++j) {
+    TriangleSoup posed;
+    posed.points = skin_positions(original, poses[j]);
+    posed.triangles = rest.triangles;
+    const MeasuredSurface surface(posed, 0, 1);
+    const std::vector<Eigen::Vector3d> y = skin_positions(lod, poses[j]);
+    for (auto vh : lod.vertices()) {
+      int tri = -1;
+      surface.distance(y[vh.idx()], tri);
+      if (tri < 0) continue;
+      const auto& T = posed.triangles[tri];
+      const Eigen::Vector3d corners[3] = {posed.points[T[0]], posed.points[T[1]], posed.points[T[2]]};
+      Eigen::Vector3d bary;
+      closest_barycentric(corners, y[vh.idx()], bary);
+      target[j][vh.idx()] = bary[0] * corners[0] + bary[1] * corners[1] + bary[2] * corners[2];
+      has_target[j][vh.idx()] = 1;
+    }
   }
   std::vector<Eigen::Vector3d> x0(nv);
   for (auto vh : lod.vertices()) x0[vh.idx()] = to_eigen(lod.point(vh));
@@ -134,7 +147,7 @@ RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const
       const std::vector<AffineVertex> av = affine_skin(lod, poses[j]);
       const TriangleSoup lsoup = posed_soup(lod, poses[j]);
       const MeasuredSurface lsurf(lsoup, 0, 1);
-      const TriangleSoup& osoup = originals[j];
+      const std::vector<Eigen::Vector3d> P = skin_positions(original, poses[j]);
       // The original's vertices and centroids onto the LOD.
       auto onto_lod = [&](const Eigen::Vector3d& s) {
         int tri = -1;
@@ -146,30 +159,23 @@ RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const
         closest_barycentric(corners, s, bary);
         ne.add(T.data(), bary.data(), 3, av, x, s);
       };
-      const size_t total = osoup.points.size() + osoup.triangles.size();
+      const size_t total = original.n_vertices() + rest.triangles.size();
       const size_t stride =
           std::max<size_t>(1, (total + settings.max_samples - 1) / std::max<size_t>(1, settings.max_samples));
       for (size_t i = 0; i < total; i += stride) {
-        if (i < osoup.points.size()) {
-          onto_lod(osoup.points[i]);
+        if (i < original.n_vertices()) {
+          if (!original.status(SkinnedMesh::VertexHandle(int(i))).deleted()) onto_lod(P[i]);
         } else {
-          const auto& T = osoup.triangles[i - osoup.points.size()];
-          onto_lod((osoup.points[T[0]] + osoup.points[T[1]] + osoup.points[T[2]]) / 3.0);
+          const auto& T = rest.triangles[i - original.n_vertices()];
+          onto_lod((P[T[0]] + P[T[1]] + P[T[2]]) / 3.0);
         }
       }
       // The LOD's vertices onto the original.
       for (auto vh : lod.vertices()) {
-        const Eigen::Vector3d& y = lsoup.points[vh.idx()];
-        int tri = -1;
-        original_surfaces[j]->distance(y, tri);
-        if (tri < 0) continue;
-        const auto& T = osoup.triangles[tri];
-        const Eigen::Vector3d corners[3] = {osoup.points[T[0]], osoup.points[T[1]], osoup.points[T[2]]};
-        Eigen::Vector3d bary;
-        closest_barycentric(corners, y, bary);
+        if (!has_target[j][vh.idx()]) continue;
         const int v = vh.idx();
         const double one = 1.0;
-        ne.add(&v, &one, 1, av, x, bary[0] * corners[0] + bary[1] * corners[1] + bary[2] * corners[2]);
+        ne.add(&v, &one, 1, av, x, target[j][v]);
       }
     }
     const double rms = std::sqrt(ne.sum_sq / std::max<size_t>(1, ne.n));

@@ -6,9 +6,10 @@
  *  sparse linear least-squares problem; correspondences are then found again, a few rounds.
  *
  *  Residuals, in every example pose: each original vertex and triangle centroid to its closest point on the
- *  posed LOD (the LOD must cover the original), and each LOD vertex to its closest point on the posed
- *  original (the LOD must not leave it), plus a small pull toward the decimated positions (so that
- *  directions nothing constrains stay put). A round whose positions would turn a face by more than 90
+ *  posed LOD (the LOD must cover the original; found again each round), and each LOD vertex to the point of
+ *  the posed original nearest to it as decimated (the LOD must not leave the original; found once per
+ *  pose, one search tree at a time), plus a small pull toward the decimated positions (so that directions
+ *  nothing constrains stay put). A round whose positions would turn a face by more than 90
  *  degrees in some pose is halved until none does.
  */
 
