@@ -1,10 +1,12 @@
 #pragma once
 /** \file ModFrameFoldOverT.hh */
 
+#include "OpenMeshSkinned/Decimater/FoldOver.hh"
 #include "OpenMeshSkinned/Deform/ExampleFrames.hh"
 
 #include <OpenMesh/Tools/Decimater/ModBaseT.hh>
 
+#include <algorithm>
 #include <cmath>
 
 namespace OpenMeshSkinned {
@@ -32,30 +34,21 @@ public:
   void initialize() override { frames_ = example_frame_points(Base::mesh()); }
 
   float collapse_priority(const CollapseInfo& ci) override {
-    const MeshT& mesh = Base::mesh();
-    for (auto fh : mesh.vf_range(ci.v0)) {
-      if (fh == ci.fl || fh == ci.fr) continue;
-      int v[3], k = 0, at = -1;
-      for (auto vh : mesh.fv_range(fh)) {
-        if (vh == ci.v0) at = k;
-        v[k++] = vh.idx();
-      }
-      for (const FramePoints& p : frames_) {
-        const Eigen::Vector3d n0 = (p[v[1]] - p[v[0]]).cross(p[v[2]] - p[v[0]]);
-        Eigen::Vector3d q[3] = {p[v[0]], p[v[1]], p[v[2]]};
-        q[at] = p[ci.v1.idx()];
-        const Eigen::Vector3d n1 = (q[1] - q[0]).cross(q[2] - q[0]);
-        const double l0 = n0.norm(), l1 = n1.norm();
-        if (!(l1 > 0.0)) return float(Base::ILLEGAL_COLLAPSE);
-        if (l0 > 0.0 && n0.dot(n1) < min_cos_ * l0 * l1) return float(Base::ILLEGAL_COLLAPSE);
-      }
-    }
-    return float(Base::LEGAL_COLLAPSE);
+    surviving_faces(Base::mesh(), ci.v0, ci.v1, ring_);
+    // Endpoint placement: only v0's faces move (to v1's position).
+    ring_.erase(std::remove_if(ring_.begin(), ring_.end(), [&](const RingFace& f) { return f[0] != ci.v0.idx(); }),
+                ring_.end());
+    const int v1 = ci.v1.idx();
+    const bool fold = folds_in_any_pose(
+        ring_, int(frames_.size()), [this](int v, int j) { return frames_[j][v]; },
+        [this, v1](int j) { return frames_[j][v1]; }, min_cos_);
+    return float(fold ? Base::ILLEGAL_COLLAPSE : Base::LEGAL_COLLAPSE);
   }
 
 private:
   double min_cos_ = 0.0;
   std::vector<FramePoints> frames_;
+  std::vector<RingFace> ring_;
 };
 
 }  // namespace OpenMeshSkinned

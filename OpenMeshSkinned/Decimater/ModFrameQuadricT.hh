@@ -2,11 +2,13 @@
 /** \file ModFrameQuadricT.hh */
 
 #include <OpenMesh/Tools/Decimater/ModBaseT.hh>
+#include "OpenMeshSkinned/Decimater/FoldOver.hh"
 #include "OpenMeshSkinned/Decimater/MorphTransferT.hh"
 #include "OpenMeshSkinned/Decimater/UvTransferT.hh"
 #include "OpenMeshSkinned/Deform/ExampleFrames.hh"
 #include "OpenMeshSkinned/Solver/VertexQuadrics.hh"
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 
@@ -233,35 +235,21 @@ private:
   // Whether a face around the collapse (v0's and v1's that survive) turns too far, or loses its area, in
   // some pose when the merged vertex takes the placement's trajectory.
   bool folds(const CollapseInfo& ci, const Placement& pl) {
-    const MeshT& mesh = Base::mesh();
-    for (auto c : {ci.v0, ci.v1}) {
-      if (c == ci.v1 && !pl.moved) continue;  // v1's own faces do not move
-      for (auto fh : mesh.vf_range(c)) {
-        if (fh == ci.fl || fh == ci.fr) continue;
-        int v[3], k = 0, at = -1;
-        for (auto vh : mesh.fv_range(fh)) {
-          if (vh == c) at = k;
-          v[k++] = vh.idx();
-        }
-        for (size_t f = 0; f < P_; ++f) {
-          const FramePoints& p = frames_[f];
-          const Eigen::Vector3d n0 = (p[v[1]] - p[v[0]]).cross(p[v[2]] - p[v[0]]);
-          Eigen::Vector3d q[3] = {p[v[0]], p[v[1]], p[v[2]]};
-          q[at] = pl.moved ? pl.trajectory[f] : p[ci.v1.idx()];
-          const Eigen::Vector3d n1 = (q[1] - q[0]).cross(q[2] - q[0]);
-          const double l0 = n0.norm(), l1 = n1.norm();
-          if (!(l1 > 0.0)) return true;
-          if (l0 > 0.0 && n0.dot(n1) < min_cos_ * l0 * l1) return true;
-        }
-      }
-    }
-    return false;
+    surviving_faces(Base::mesh(), ci.v0, ci.v1, ring_);
+    if (!pl.moved)  // v1 stays: its own faces do not move
+      ring_.erase(std::remove_if(ring_.begin(), ring_.end(), [&](const RingFace& f) { return f[0] != ci.v0.idx(); }),
+                  ring_.end());
+    const int v1 = ci.v1.idx();
+    return folds_in_any_pose(
+        ring_, int(P_), [this](int v, int j) { return frames_[j][v]; },
+        [&](int j) { return pl.moved ? pl.trajectory[j] : frames_[j][v1]; }, min_cos_);
   }
 
   double max_err_ = DBL_MAX;
   bool placement_ = true;
   double min_cos_ = 0.0;
   std::vector<FramePoints> frames_;
+  std::vector<RingFace> ring_;
   size_t P_ = 0;
   std::vector<PoseQuadric> q_;
   OpenMesh::VPropHandleT<Influences> h_inf_;

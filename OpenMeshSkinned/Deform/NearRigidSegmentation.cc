@@ -31,12 +31,14 @@ struct DualGraph {
 DualGraph dual_graph(const SkinnedMesh& mesh, const FramePoints& ref, const FaceGradients<SkinnedMesh>& g,
                      double delta) {
   const std::vector<double> D = deformation_distances(mesh, ref, g, true);
+  std::vector<double> geod(mesh.n_edges(), 0.0);  // centroid distance across each interior edge
   double sum_geod = 0.0;
   std::vector<double> interior;
   for (auto eh : mesh.edges())
     if (!mesh.is_boundary(eh)) {
-      sum_geod += centroid_distance(mesh, ref, mesh.face_handle(mesh.halfedge_handle(eh, 0)),
-                                    mesh.face_handle(mesh.halfedge_handle(eh, 1)));
+      geod[eh.idx()] = centroid_distance(mesh, ref, mesh.face_handle(mesh.halfedge_handle(eh, 0)),
+                                         mesh.face_handle(mesh.halfedge_handle(eh, 1)));
+      sum_geod += geod[eh.idx()];
       interior.push_back(D[eh.idx()]);
     }
   const size_t n = interior.size();
@@ -65,9 +67,8 @@ DualGraph dual_graph(const SkinnedMesh& mesh, const FramePoints& ref, const Face
   for (auto eh : mesh.edges()) {
     if (mesh.is_boundary(eh)) continue;
     const auto fa = mesh.face_handle(mesh.halfedge_handle(eh, 0)), fb = mesh.face_handle(mesh.halfedge_handle(eh, 1));
-    const double geod = centroid_distance(mesh, ref, fa, fb);
     const double d_norm = avg_d > 0.0 ? D[eh.idx()] / avg_d : 0.0;
-    const double dis = delta * geod / avg_geod + (1.0 - delta) * d_norm;
+    const double dis = delta * geod[eh.idx()] / avg_geod + (1.0 - delta) * d_norm;
     const auto heh = mesh.halfedge_handle(eh, 0);
     const double edge = (ref[mesh.to_vertex_handle(heh).idx()] - ref[mesh.from_vertex_handle(heh).idx()]).norm();
     G.arcs[fa.idx()].push_back({fb.idx(), dis, d_norm, edge});

@@ -18,12 +18,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-int32_t read_i32(const std::string& path, size_t offset) {
-  std::ifstream f(path, std::ios::binary);
-  unsigned char b[4] = {0, 0, 0, 0};
-  f.seekg(std::streamoff(offset));
-  f.read(reinterpret_cast<char*>(b), 4);
-  if (!f) return 0;
+// The little-endian int32 at \p offset of \p header (0 when the header is shorter).
+int32_t le_i32(const std::vector<unsigned char>& header, size_t offset) {
+  if (header.size() < offset + 4) return 0;
+  const unsigned char* b = header.data() + offset;
   return int32_t(uint32_t(b[0]) | uint32_t(b[1]) << 8 | uint32_t(b[2]) << 16 | uint32_t(b[3]) << 24);
 }
 
@@ -31,19 +29,20 @@ int32_t read_i32(const std::string& path, size_t offset) {
 
 size_t stored_frame_count(const std::string& path) {
   std::ifstream f(path, std::ios::binary);
-  char ident[4] = {0, 0, 0, 0};
-  f.read(ident, 4);
-  if (!f) return 1;
+  std::vector<unsigned char> header(80, 0);
+  f.read(reinterpret_cast<char*>(header.data()), std::streamsize(header.size()));
+  header.resize(size_t(f.gcount()));
+  if (header.size() < 4) return 1;
+  auto ident = [&](const char* id, size_t n) { return std::memcmp(header.data(), id, n) == 0; };
   // Header layouts: id Software's md2.h / md3.h / modelgen.h (little-endian int32 fields); 3D GameStudio's
   // MDL2-MDL5 share Quake's MDL header (MDL7 does not, and stores no frames assimp reads).
   int32_t n = 1;
-  if (std::memcmp(ident, "IDP2", 4) == 0)
-    n = read_i32(path, 40);  // MD2: num_frames
-  else if (std::memcmp(ident, "IDP3", 4) == 0)
-    n = read_i32(path, 76);  // MD3: after name[64] and flags
-  else if (std::memcmp(ident, "IDPO", 4) == 0 ||
-           (std::memcmp(ident, "MDL", 3) == 0 && ident[3] >= '2' && ident[3] <= '5'))
-    n = read_i32(path, 68);  // MDL: after the scale, origin, radius, eye, skin and counts
+  if (ident("IDP2", 4))
+    n = le_i32(header, 40);  // MD2: num_frames
+  else if (ident("IDP3", 4))
+    n = le_i32(header, 76);  // MD3: after name[64] and flags
+  else if (ident("IDPO", 4) || (ident("MDL", 3) && header[3] >= '2' && header[3] <= '5'))
+    n = le_i32(header, 68);  // MDL: after the scale, origin, radius, eye, skin and counts
   return n > 0 ? size_t(n) : 1;
 }
 

@@ -1,5 +1,6 @@
 #include "OpenMeshSkinned/Solver/Refit.hh"
 
+#include "OpenMeshSkinned/Deform/ExampleFrames.hh"
 #include "OpenMeshSkinned/Eval/SurfaceDistance.hh"
 #include "OpenMeshSkinned/Mesh/ClosestPoint.hh"
 #include "OpenMeshSkinned/Skin/LinearBlendSkinning.hh"
@@ -133,8 +134,10 @@ RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const
       has_target[j][vh.idx()] = 1;
     }
   }
-  std::vector<Eigen::Vector3d> x0(nv);
-  for (auto vh : lod.vertices()) x0[vh.idx()] = to_eigen(lod.point(vh));
+  const std::vector<Eigen::Vector3d> x0 = rest_points(lod);
+  // Skins and morph offsets do not change: each pose's affine maps serve every round.
+  std::vector<std::vector<AffineVertex>> affine;
+  for (const Pose& p : poses) affine.push_back(affine_skin(lod, p));
   // Folds are judged against the decimated LOD, not round by round: small turns must not add up.
   std::vector<std::vector<Eigen::Vector3d>> posed_initial;
   for (const Pose& p : poses) posed_initial.push_back(skin_positions(lod, p));
@@ -144,7 +147,7 @@ RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const
     Normal ne;
     ne.rhs = Eigen::VectorXd::Zero(long(3 * nv));
     for (size_t j = 0; j < poses.size(); ++j) {
-      const std::vector<AffineVertex> av = affine_skin(lod, poses[j]);
+      const std::vector<AffineVertex>& av = affine[j];
       const TriangleSoup lsoup = posed_soup(lod, poses[j]);
       const MeasuredSurface lsurf(lsoup, 0, 1);
       const std::vector<Eigen::Vector3d> P = skin_positions(original, poses[j]);

@@ -1,5 +1,6 @@
 #include "Frames.hh"
 
+#include <OpenMeshSkinned/Deform/ExampleFrames.hh>
 #include <OpenMeshSkinned/Deform/KeyframeGA.hh>
 #include <OpenMeshSkinned/Deform/NearRigidSegmentation.hh>
 #include <OpenMeshSkinned/Deform/PoseSelection.hh>
@@ -93,9 +94,7 @@ void write_segmentation(const Mesh& mesh, const std::string& out, OutputSet& out
   } else {
     throw UsageError("--segment: the input has no animation; near-rigid parts are found from how it moves");
   }
-  FramePoints ref(mesh.n_vertices());
-  for (auto vh : mesh.all_vertices()) ref[vh.idx()] = to_eigen(mesh.point(vh));
-  const Segmentation seg = segment_near_rigid(mesh, ref, frames);
+  const Segmentation seg = segment_near_rigid(mesh, rest_points(mesh), frames);
 
   Mesh coloured = mesh;
   auto& mats = materials(coloured);
