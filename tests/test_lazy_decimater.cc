@@ -145,6 +145,43 @@ TEST(LazyDecimater, TheResultDoesNotDependOnTheThreadCount) {
   for (auto vh : meshes[0].vertices()) EXPECT_EQ(meshes[0].property(h, vh).size(), meshes[1].property(h, vh).size());
 }
 
+// The skinned quadric with its one-candidate-per-edge hint switched off: the driver then queues halfedges.
+template <typename MeshT>
+class HalfedgeQueuedQuadricT : public ModSkinnedQuadricT<MeshT> {
+public:
+  using Handle = OpenMesh::Decimater::ModHandleT<HalfedgeQueuedQuadricT<MeshT>>;
+  explicit HalfedgeQueuedQuadricT(MeshT& mesh) : ModSkinnedQuadricT<MeshT>(mesh) {}
+  bool prices_edges() const override { return false; }
+};
+
+TEST(LazyDecimater, OneCandidatePerEdgeHalvesThePricingAndChangesNothingElse) {
+  const Mesh original = make_bending_cylinder(16, 24);
+  Mesh by_edge = original, by_halfedge = original;
+  LazyDecimaterStats stats[2];
+  for (int run = 0; run < 2; ++run) {
+    Mesh& mesh = run == 0 ? by_edge : by_halfedge;
+    Lazy dec(mesh);
+    ModSkinnedQuadricT<Mesh>::Handle hq;
+    HalfedgeQueuedQuadricT<Mesh>::Handle hh;
+    ModWeightCapT<Mesh>::Handle hc;
+    ModSkinnedFoldOverT<Mesh>::Handle hf;
+    if (run == 0)
+      dec.add(hq);
+    else
+      dec.add(hh);
+    dec.add(hc);
+    dec.add(hf);
+    dec.set_threads(1);
+    ASSERT_TRUE(dec.initialize());
+    dec.decimate_to_faces(0, original.n_faces() / 5);
+    stats[run] = dec.stats();
+    mesh.garbage_collection();
+  }
+  EXPECT_EQ(stats[0].collapses, stats[1].collapses);
+  EXPECT_LT(stats[0].priced, 0.6 * stats[1].priced);
+  omsk_test::expect_same_mesh(by_edge, by_halfedge);
+}
+
 TEST(LazyDecimater, InitializeNeedsExactlyOnePriorityModuleAndTheMarkIsRemovedAfterwards) {
   Mesh mesh = make_bending_cylinder(8, 8);
   {

@@ -54,4 +54,13 @@ public:
   virtual bool prices_by_endpoints() const { return true; }
 };
 
+/** A priority module that prices both halfedges of an edge alike (it places the merged vertex itself, so
+ *  the collapse's outcome does not depend on which endpoint survives): a driver may then keep one candidate
+ *  per edge instead of two, half the queue and half the re-pricing. */
+class EdgePriority {
+public:
+  virtual ~EdgePriority() = default;
+  virtual bool prices_edges() const { return false; }
+};
+
 }  // namespace OpenMeshSkinned

@@ -37,6 +37,8 @@ struct LazyDecimaterStats {
  *  - binary modules are asked when a candidate is popped with an up-to-date stamp, right before the
  *    collapse: verdicts are never stale (modules learn this from checks_at_pop(), DriverHints.hh).
  *  Modules implementing BatchPricing compute their answers for all edges first on set_threads() threads.
+ *  When the priority module prices both directions of an edge alike (EdgePriority), the heap holds edges,
+ *  and a popped edge collapses in the first legal direction.
  *
  *  Modules must be added through this class (it keeps its own list to tell binary modules from the
  *  priority one, by DecimaterT's rule).
@@ -94,6 +96,8 @@ public:
       if (m != priority_) binary_.push_back(m);
     const auto* ep = priority_ ? dynamic_cast<EndpointPriority*>(priority_) : nullptr;
     endpoint_priority_ = ep && ep->prices_by_endpoints();
+    const auto* edge = priority_ ? dynamic_cast<EdgePriority*>(priority_) : nullptr;
+    by_edge_ = edge && edge->prices_edges();
     return priority_ != nullptr;
   }
 
@@ -119,14 +123,20 @@ public:
   const LazyDecimaterStats& stats() const { return stats_; }
 
 private:
+  // A candidate is a halfedge, or an edge when the priority module prices both directions alike
+  // (EdgePriority): then both halfedges are tried when it is popped.
   struct Candidate {
     float key;
-    int h;
+    int slot;
     uint32_t stamp;
-    // A min-heap on (key, halfedge index): ties resolve the same way on every run.
-    bool operator<(const Candidate& o) const { return key != o.key ? key > o.key : h > o.h; }
+    // A min-heap on (key, slot index): ties resolve the same way on every run.
+    bool operator<(const Candidate& o) const { return key != o.key ? key > o.key : slot > o.slot; }
   };
 
+  HalfedgeHandle halfedge_of(int slot, int dir = 0) const {
+    return by_edge_ ? mesh_.halfedge_handle(typename Mesh::EdgeHandle(slot), dir) : HalfedgeHandle(slot);
+  }
+  int slot_of(HalfedgeHandle h) const { return by_edge_ ? mesh_.edge_handle(h).idx() : h.idx(); }
   uint32_t stamp_of(HalfedgeHandle h) const {
     return std::max(stamp_[mesh_.from_vertex_handle(h).idx()], stamp_[mesh_.to_vertex_handle(h).idx()]);
   }
@@ -135,23 +145,42 @@ private:
     return !mesh_.status(mesh_.edge_handle(h)).deleted() && !mesh_.status(v0).deleted() &&
            (!only_selected || mesh_.status(v0).selected());
   }
-  // Prices \p h with the priority module alone and queues it if legal.
-  void price(HalfedgeHandle h) {
-    const CollapseInfo ci(mesh_, h);
-    // The full topological test (is_collapse_legal, a quarter of the run) is made when the candidate is
-    // popped; here only what keeps a candidate illegal until its neighbourhood changes.
-    if (mesh_.status(ci.v0).locked() || (mesh_.is_boundary(ci.v0) && !mesh_.is_boundary(ci.v1))) return;
+  // What keeps a direction illegal until its neighbourhood changes; the full topological test
+  // (is_collapse_legal, a quarter of the run) is made when the candidate is popped.
+  bool may_collapse(HalfedgeHandle h, bool only_selected) const {
+    if (!eligible(h, only_selected)) return false;
+    const VertexHandle v0 = mesh_.from_vertex_handle(h), v1 = mesh_.to_vertex_handle(h);
+    return !mesh_.status(v0).locked() && (!mesh_.is_boundary(v0) || mesh_.is_boundary(v1));
+  }
+  // Prices the candidate \p slot with the priority module alone and queues it if legal.
+  void price(int slot, bool only_selected) {
+    HalfedgeHandle h = halfedge_of(slot);
+    if (!may_collapse(h, only_selected)) {
+      if (!by_edge_) return;
+      h = halfedge_of(slot, 1);
+      if (!may_collapse(h, only_selected)) return;
+    }
     ++stats_.priced;
-    const float key = priority_->collapse_priority(ci);
+    const float key = priority_->collapse_priority(CollapseInfo(mesh_, h));
     if (key < 0.0f) return;
-    heap_.push({key, h.idx(), stamp_of(h)});
-    queued_[h.idx()] = 1;
-    last_key_[h.idx()] = key;
+    heap_.push({key, slot, stamp_of(h)});
+    queued_[slot] = 1;
+    last_key_[slot] = key;
   }
   bool binary_modules_accept(const CollapseInfo& ci) {
     for (Module* m : binary_)
       if (m->collapse_priority(ci) < 0.0f) return false;
     return true;
+  }
+  // The direction of \p slot to collapse now, or an invalid handle when none is legal.
+  HalfedgeHandle legal_direction(int slot, bool only_selected) {
+    for (int dir = 0; dir < (by_edge_ ? 2 : 1); ++dir) {
+      const HalfedgeHandle h = halfedge_of(slot, dir);
+      if (by_edge_ && !may_collapse(h, only_selected)) continue;
+      CollapseInfo ci(mesh_, h);
+      if (this->is_collapse_legal(ci) && binary_modules_accept(ci)) return h;
+    }
+    return HalfedgeHandle();
   }
 
   template <typename Continue>
@@ -159,32 +188,35 @@ private:
     if (!this->is_initialized() || !priority_) return 0;
     for (Module* m : modules_)
       if (auto* b = dynamic_cast<BatchPricing*>(m)) b->price_all_edges(threads_);
+    const size_t n_slots = by_edge_ ? mesh_.n_edges() : mesh_.n_halfedges();
     heap_ = {};
     stamp_.assign(mesh_.n_vertices(), 0);
-    queued_.assign(mesh_.n_halfedges(), 0);
-    last_key_.assign(mesh_.n_halfedges(), 0.0f);
+    queued_.assign(n_slots, 0);
+    last_key_.assign(n_slots, 0.0f);
     clock_ = 0;
-    for (auto h : mesh_.halfedges())
-      if (eligible(h, only_selected)) price(h);
+    for (size_t i = 0; i < n_slots; ++i) price(static_cast<int>(i), only_selected);
 
     size_t nv = mesh_.n_vertices(), nf = mesh_.n_faces(), done = 0;
     const bool update_normals = mesh_.has_face_normals();
     while (!heap_.empty() && go_on(done, nv, nf)) {
       const Candidate c = heap_.top();
       heap_.pop();
-      const HalfedgeHandle h(c.h);
-      queued_[c.h] = 0;
-      if (!eligible(h, only_selected)) continue;
-      if (c.stamp != stamp_of(h)) {
+      queued_[c.slot] = 0;
+      const HalfedgeHandle h0 = halfedge_of(c.slot);
+      if (mesh_.status(mesh_.edge_handle(h0)).deleted()) continue;
+      if (c.stamp != stamp_of(h0)) {
         ++stats_.stale;
-        price(h);
+        price(c.slot, only_selected);
         continue;
       }
-      CollapseInfo ci(mesh_, h);
-      if (!this->is_collapse_legal(ci) || !binary_modules_accept(ci)) {
+      const HalfedgeHandle h =
+          by_edge_ ? legal_direction(c.slot, only_selected)
+                   : (eligible(h0, only_selected) ? legal_direction(c.slot, only_selected) : HalfedgeHandle());
+      if (!h.is_valid()) {
         ++stats_.refused;  // queued again when its neighbourhood changes
         continue;
       }
+      CollapseInfo ci(mesh_, h);
       --nv;
       nf -= mesh_.is_boundary(ci.v0v1) || mesh_.is_boundary(ci.v1v0) ? 1 : 2;
       this->preprocess_collapse(ci);
@@ -194,7 +226,7 @@ private:
       this->postprocess_collapse(ci);
       ++done;
       ++stats_.collapses;
-      touch_around(ci.v1, only_selected);
+      touch_around(ci.v1);
       if (!this->notify_observer(done)) break;
     }
     heap_ = {};
@@ -205,26 +237,33 @@ private:
   // out of date. Stamp them (only v1 when the priority module prices by the endpoints alone: verdicts are
   // asked at pop time anyway); candidates that had left the heap (refused, or illegal then) come back with
   // their last key (a lower bound when priorities only grow; 0 if never priced) and are re-priced when popped.
-  void touch_around(VertexHandle v1, bool only_selected) {
+  void touch_around(VertexHandle v1) {
     ++clock_;
     stamp_[v1.idx()] = clock_;
     if (!endpoint_priority_)
       for (auto v : mesh_.vv_range(v1)) stamp_[v.idx()] = clock_;
     auto requeue = [&](HalfedgeHandle h) {
-      if (!queued_[h.idx()] && eligible(h, only_selected)) {
-        heap_.push({last_key_[h.idx()], h.idx(), 0});
-        queued_[h.idx()] = 1;
+      const int slot = slot_of(h);
+      if (!queued_[slot] && !mesh_.status(mesh_.edge_handle(h)).deleted()) {
+        heap_.push({last_key_[slot], slot, 0});
+        queued_[slot] = 1;
       }
     };
-    for (auto h : mesh_.voh_range(v1)) requeue(h), requeue(mesh_.opposite_halfedge_handle(h));
-    for (auto v : mesh_.vv_range(v1))
-      for (auto h : mesh_.voh_range(v)) requeue(h), requeue(mesh_.opposite_halfedge_handle(h));
+    auto requeue_at = [&](VertexHandle v) {
+      for (auto h : mesh_.voh_range(v)) {
+        requeue(h);
+        if (!by_edge_) requeue(mesh_.opposite_halfedge_handle(h));
+      }
+    };
+    requeue_at(v1);
+    for (auto v : mesh_.vv_range(v1)) requeue_at(v);
   }
 
   Mesh& mesh_;
   std::vector<Module*> modules_, binary_;
   Module* priority_ = nullptr;
   bool endpoint_priority_ = false;  // the priority module says only v1's collapses change price
+  bool by_edge_ = false;            // one candidate per edge (EdgePriority)
   int threads_ = std::max(1u, std::thread::hardware_concurrency());
   std::priority_queue<Candidate> heap_;
   std::vector<uint32_t> stamp_;

@@ -62,6 +62,8 @@ public:
     this->settings_changed();
   }
   bool error_per_area() const { return per_area_; }
+  /// The merged vertex is placed by the solve, whichever endpoint survives (EdgePriority).
+  bool prices_edges() const override { return true; }
 
 protected:
   float price(const CollapseInfo& ci) override {

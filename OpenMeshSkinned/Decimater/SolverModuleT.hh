@@ -29,7 +29,8 @@ template <typename MeshT>
 class SolverModuleT : public OpenMesh::Decimater::ModBaseT<MeshT>,
                       protected SolverClientT<MeshT>,
                       public BatchPricing,
-                      public EndpointPriority {
+                      public EndpointPriority,
+                      public EdgePriority {
   using ModBase = OpenMesh::Decimater::ModBaseT<MeshT>;
 
 public:

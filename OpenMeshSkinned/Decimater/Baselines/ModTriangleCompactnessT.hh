@@ -42,6 +42,8 @@ public:
   }
 
   bool prices_by_endpoints() const override { return false; }
+  /// The merged vertex is placed by the solve, whichever endpoint survives (EdgePriority).
+  bool prices_edges() const override { return true; }
 
 protected:
   float price(const CollapseInfo& ci) override {

@@ -30,6 +30,9 @@ public:
     build_quadrics(quadric_);
   }
 
+  /// The merged vertex is placed by the solve, whichever endpoint survives (EdgePriority).
+  bool prices_edges() const override { return true; }
+
   void postprocess_collapse(const CollapseInfo& ci) override {
     quadric_[ci.v1.idx()] += quadric_[ci.v0.idx()];
     SolverModuleT<MeshT>::postprocess_collapse(ci);
