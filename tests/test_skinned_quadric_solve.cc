@@ -2,7 +2,11 @@
 #include <OpenMeshSkinned/Solver/SkinnedQuadricSolve.hh>
 #include <OpenMeshSkinned/Solver/TruncatedSolve.hh>
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
 
 using namespace OpenMeshSkinned;
 
@@ -171,3 +175,36 @@ TEST(TruncatedSolve, LeavesUnconstrainedDirectionsAtTheReference) {
   EXPECT_TRUE(full);
   EXPECT_NEAR((x - Eigen::Vector3d(1, 2, 3)).norm(), 0.0, 1e-12);
 }
+
+TEST(TruncatedSolve, TheInverseShortcutAgreesWithThePseudoInverseEverywhere) {
+  // Random rotations and eigenvalues from 1 down to 1e-5 of the largest, either side of the cutoff: the
+  // answer (shortcut or eigen-decomposition) must be the truncated pseudo-inverse's.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), e(-5.0, 0.0);
+  int full_count = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Eigen::Matrix3d R = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().toRotationMatrix();
+    const Eigen::Vector3d ev(1.0, std::pow(10.0, e(rng)), std::pow(10.0, e(rng)));
+    const Eigen::Matrix3d A = 3.0 * R * ev.asDiagonal() * R.transpose();
+    const Eigen::Vector3d rhs(u(rng), u(rng), u(rng)), ref(u(rng), u(rng), u(rng));
+    Eigen::Vector3d x;
+    bool full = false;
+    ASSERT_TRUE(truncated_solve(A, rhs, ref, x, &full));
+    Eigen::Vector3d d = Eigen::Vector3d::Zero();
+    const Eigen::Vector3d r = R.transpose() * (rhs - A * ref);
+    bool expect_full = true;
+    for (int i = 0; i < 3; ++i) {
+      if (3.0 * ev[i] > kPseudoInverseCutoff * 3.0)
+        d[i] = r[i] / (3.0 * ev[i]);
+      else
+        expect_full = false;
+    }
+    const Eigen::Vector3d want = ref + R * d;
+    EXPECT_EQ(full, expect_full) << "eigenvalues " << ev.transpose();
+    EXPECT_LT((x - want).norm(), 1e-6 * (1.0 + want.norm())) << "eigenvalues " << ev.transpose();
+    full_count += full;
+  }
+  EXPECT_GT(full_count, 100);
+  EXPECT_LT(full_count, 1900);
+}
+
