@@ -84,3 +84,26 @@ TEST(Refit, NothingToFitIsNoChange) {
   EXPECT_EQ(r.rounds, 0);
   omsk_test::expect_same_mesh(copy, original);
 }
+
+TEST(Refit, TheAnswerDoesNotDependOnTheThreadCount) {
+  const Mesh original = omsk_test::load_character("X/Testwuson.X", 8);
+  Mesh lod = original;
+  {
+    LazyDecimaterT<Mesh> dec(lod);
+    omsk_test::SkinnedModules<LazyDecimaterT<Mesh>> m(dec);
+    ASSERT_TRUE(dec.initialize());
+    dec.decimate_to_faces(0, original.n_faces() / 5);
+  }
+  lod.garbage_collection();
+  Mesh fitted[2] = {lod, lod};
+  RefitReport r[2];
+  for (int t = 0; t < 2; ++t) {
+    RefitSettings s;
+    s.threads = t == 0 ? 1 : 3;
+    r[t] = refit_positions(fitted[t], original, example_poses(original), s);
+  }
+  EXPECT_GT(r[0].rounds, 0);
+  EXPECT_EQ(r[0].after, r[1].after);
+  omsk_test::expect_same_mesh(fitted[0], fitted[1]);
+}
+

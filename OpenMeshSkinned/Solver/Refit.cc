@@ -10,11 +10,11 @@
 #include <Eigen/Sparse>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <memory>
 #include <thread>
-#include <unordered_map>
 
 namespace OpenMeshSkinned {
 
@@ -43,13 +43,36 @@ std::vector<AffineVertex> affine_skin(const SkinnedMesh& mesh, const Pose& pose)
   return out;
 }
 
-// Accumulates the normal equations of residuals sum_k b_k (A_k x_k + c_k) - target, 3x3 block by block (a
-// residual touches at most three vertices, so a block per pair of vertices that share a triangle).
+// The blocks of J^T J that residuals can fill: a residual touches one vertex or the corners of one LOD
+// triangle, so every vertex pairs with itself and its one-ring. Kept as sorted rows (a hash map per block
+// was a third of the fit).
+struct BlockPattern {
+  std::vector<int> start, cols;
+  explicit BlockPattern(const SkinnedMesh& lod) {
+    start.assign(lod.n_vertices() + 1, 0);
+    std::vector<int> row;
+    for (auto vh : lod.vertices()) {
+      row.assign(1, vh.idx());
+      for (auto w : lod.vv_range(vh)) row.push_back(w.idx());
+      std::sort(row.begin(), row.end());
+      cols.insert(cols.end(), row.begin(), row.end());
+      start[vh.idx() + 1] = static_cast<int>(cols.size());
+    }
+  }
+  int find(int i, int j) const {
+    return static_cast<int>(std::lower_bound(cols.begin() + start[i], cols.begin() + start[i + 1], j) - cols.begin());
+  }
+};
+
+// Accumulates the normal equations of residuals sum_k b_k (A_k x_k + c_k) - target, 3x3 block by block.
 struct Normal {
-  std::unordered_map<uint64_t, Eigen::Matrix3d> blocks;
+  const BlockPattern& pattern;
+  std::vector<Eigen::Matrix3d> blocks;
   Eigen::VectorXd rhs;
   double sum_sq = 0.0;
   size_t n = 0;
+  Normal(const BlockPattern& p, size_t nv)
+      : pattern(p), blocks(p.cols.size(), Eigen::Matrix3d::Zero()), rhs(Eigen::VectorXd::Zero(long(3 * nv))) {}
   void add(const int* v, const double* b, int m, const std::vector<AffineVertex>& av,
            const std::vector<Eigen::Vector3d>& x, const Eigen::Vector3d& target) {
     Eigen::Vector3d r = -target;
@@ -61,30 +84,43 @@ struct Normal {
     for (int i = 0; i < m; ++i) J[i] = b[i] * av[v[i]].A;
     for (int i = 0; i < m; ++i) {
       rhs.segment<3>(3 * v[i]) -= J[i].transpose() * r;
-      for (int j = 0; j < m; ++j) {
-        const uint64_t key = uint64_t(uint32_t(v[i])) << 32 | uint32_t(v[j]);
-        auto it = blocks.try_emplace(key, Eigen::Matrix3d::Zero()).first;
-        it->second += J[i].transpose() * J[j];
-      }
+      for (int j = 0; j < m; ++j) blocks[pattern.find(v[i], v[j])] += J[i].transpose() * J[j];
     }
   }
   void add_diagonal(size_t v, double lambda) {
-    const uint64_t key = uint64_t(v) << 32 | uint32_t(v);
-    blocks.try_emplace(key, Eigen::Matrix3d::Zero()).first->second += lambda * Eigen::Matrix3d::Identity();
+    blocks[pattern.find(int(v), int(v))] += lambda * Eigen::Matrix3d::Identity();
   }
   Eigen::SparseMatrix<double> matrix(size_t nv) const {
     std::vector<Eigen::Triplet<double>> t;
     t.reserve(blocks.size() * 9);
-    for (const auto& [key, B] : blocks) {
-      const long i = long(key >> 32), j = long(key & 0xffffffffu);
-      for (int a = 0; a < 3; ++a)
-        for (int c = 0; c < 3; ++c) t.emplace_back(3 * i + a, 3 * j + c, B(a, c));
-    }
+    for (size_t i = 0; i < nv; ++i)
+      for (int k = pattern.start[i]; k < pattern.start[i + 1]; ++k)
+        for (int a = 0; a < 3; ++a)
+          for (int c = 0; c < 3; ++c) t.emplace_back(long(3 * i) + a, 3L * pattern.cols[k] + c, blocks[k](a, c));
     Eigen::SparseMatrix<double> M(long(3 * nv), long(3 * nv));
     M.setFromTriplets(t.begin(), t.end());
     return M;
   }
 };
+
+// Where a point of the posed original lies on the posed LOD: a triangle and barycentric weights.
+struct Hit {
+  std::array<int, 3> tri;
+  Eigen::Vector3d bary;
+};
+
+// Runs work(j) for j in [0, n) on up to \p threads threads; each j is done by exactly one of them.
+template <typename Work>
+void for_each_pose(size_t n, int threads, Work work) {
+  std::atomic<size_t> next{0};
+  auto run = [&] {
+    for (size_t j = next++; j < n; j = next++) work(j);
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < std::min<int>(threads, int(n)); ++t) pool.emplace_back(run);
+  run();
+  for (auto& th : pool) th.join();
+}
 
 // Whether some face turns by more than 90 degrees, in some pose, between \p a and \p b (posed positions).
 bool folds(const SkinnedMesh& mesh, const std::vector<std::vector<Eigen::Vector3d>>& a,
@@ -103,24 +139,46 @@ RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const
                             const RefitSettings& settings) {
   RefitReport report;
   if (poses.empty() || lod.n_faces() == 0) return report;
-  const size_t nv = lod.n_vertices();
-  // Where each LOD vertex lies on the posed original, per pose, found once from the decimated LOD (a tree
-  // per pose, one at a time, so memory stays one tree however many poses); the LOD must not leave those
-  // points. (Found in the rest shape instead, a vertex where two parts touch at rest, a helmet on a head,
-  // could be tied to the wrong one.)
-  std::vector<std::vector<Eigen::Vector3d>> target(poses.size(), std::vector<Eigen::Vector3d>(nv));
-  std::vector<std::vector<char>> has_target(poses.size(), std::vector<char>(nv, 0));
-  TriangleSoup rest;
+  const size_t nv = lod.n_vertices(), np = poses.size();
+  const int threads = std::max(1, settings.threads);
+  std::vector<std::array<int, 3>> triangles;
   for (auto fh : original.faces()) {
     auto fv = original.cfv_iter(fh);
     const int a = (fv++)->idx(), b = (fv++)->idx(), c = fv->idx();
-    rest.triangles.push_back({a, b, c});
+    triangles.push_back({a, b, c});
   }
-  for (size_t j = 0; j < poses.size(); ++j) {
+  // The original's points whose distance to the LOD is fitted: vertices, then triangle centroids, evenly
+  // strided down to max_samples.
+  const size_t total = original.n_vertices() + triangles.size();
+  const size_t stride =
+      std::max<size_t>(1, (total + settings.max_samples - 1) / std::max<size_t>(1, settings.max_samples));
+  std::vector<size_t> samples;
+  for (size_t i = 0; i < total; i += stride)
+    if (i >= original.n_vertices() || !original.status(SkinnedMesh::VertexHandle(int(i))).deleted())
+      samples.push_back(i);
+
+  // Per pose, on threads taking poses in turn (a search tree each, so at most `threads` trees at once):
+  // the samples posed, and where each LOD vertex lies on the posed original, found once from the
+  // decimated LOD; the LOD must not leave those points. (Found in the rest shape instead, a vertex where
+  // two parts touch at rest, a helmet on a head, could be tied to the wrong one.)
+  std::vector<std::vector<Eigen::Vector3d>> target(np, std::vector<Eigen::Vector3d>(nv));
+  std::vector<std::vector<char>> has_target(np, std::vector<char>(nv, 0));
+  std::vector<std::vector<Eigen::Vector3d>> sample_at(np);
+  for_each_pose(np, threads, [&](size_t j) {
     TriangleSoup posed;
     posed.points = skin_positions(original, poses[j]);
-    posed.triangles = rest.triangles;
-    const MeasuredSurface surface(posed, 0, 1);
+    posed.triangles = triangles;
+    auto& sp = sample_at[j];
+    sp.reserve(samples.size());
+    for (size_t i : samples) {
+      if (i < original.n_vertices()) {
+        sp.push_back(posed.points[i]);
+      } else {
+        const auto& T = triangles[i - original.n_vertices()];
+        sp.push_back((posed.points[T[0]] + posed.points[T[1]] + posed.points[T[2]]) / 3.0);
+      }
+    }
+    const MeasuredSurface surface(posed, 0, 1, /*accelerate=*/false);
     const std::vector<Eigen::Vector3d> y = skin_positions(lod, poses[j]);
     for (auto vh : lod.vertices()) {
       int tri = -1;
@@ -133,7 +191,7 @@ RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const
       target[j][vh.idx()] = bary[0] * corners[0] + bary[1] * corners[1] + bary[2] * corners[2];
       has_target[j][vh.idx()] = 1;
     }
-  }
+  });
   const std::vector<Eigen::Vector3d> x0 = rest_points(lod);
   // Skins and morph offsets do not change: each pose's affine maps serve every round.
   std::vector<std::vector<AffineVertex>> affine;
@@ -141,38 +199,32 @@ RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const
   // Folds are judged against the decimated LOD, not round by round: small turns must not add up.
   std::vector<std::vector<Eigen::Vector3d>> posed_initial;
   for (const Pose& p : poses) posed_initial.push_back(skin_positions(lod, p));
+  const BlockPattern pattern(lod);
+  std::vector<std::vector<Hit>> hits(np);
   for (int round = 0; round < settings.rounds; ++round) {
     std::vector<Eigen::Vector3d> x(nv);
     for (auto vh : lod.vertices()) x[vh.idx()] = to_eigen(lod.point(vh));
-    Normal ne;
-    ne.rhs = Eigen::VectorXd::Zero(long(3 * nv));
-    for (size_t j = 0; j < poses.size(); ++j) {
-      const std::vector<AffineVertex>& av = affine[j];
+    // The original's samples onto the posed LOD, pose by pose on the threads; summed below in pose order,
+    // so the answer does not depend on the thread count.
+    for_each_pose(np, threads, [&](size_t j) {
       const TriangleSoup lsoup = posed_soup(lod, poses[j]);
       const MeasuredSurface lsurf(lsoup, 0, 1);
-      const std::vector<Eigen::Vector3d> P = skin_positions(original, poses[j]);
-      // The original's vertices and centroids onto the LOD.
-      auto onto_lod = [&](const Eigen::Vector3d& s) {
+      hits[j].assign(samples.size(), Hit{{-1, -1, -1}, Eigen::Vector3d::Zero()});
+      for (size_t s = 0; s < samples.size(); ++s) {
         int tri = -1;
-        lsurf.distance(s, tri);
-        if (tri < 0) return;
-        const auto& T = lsoup.triangles[tri];
-        const Eigen::Vector3d corners[3] = {lsoup.points[T[0]], lsoup.points[T[1]], lsoup.points[T[2]]};
-        Eigen::Vector3d bary;
-        closest_barycentric(corners, s, bary);
-        ne.add(T.data(), bary.data(), 3, av, x, s);
-      };
-      const size_t total = original.n_vertices() + rest.triangles.size();
-      const size_t stride =
-          std::max<size_t>(1, (total + settings.max_samples - 1) / std::max<size_t>(1, settings.max_samples));
-      for (size_t i = 0; i < total; i += stride) {
-        if (i < original.n_vertices()) {
-          if (!original.status(SkinnedMesh::VertexHandle(int(i))).deleted()) onto_lod(P[i]);
-        } else {
-          const auto& T = rest.triangles[i - original.n_vertices()];
-          onto_lod((P[T[0]] + P[T[1]] + P[T[2]]) / 3.0);
-        }
+        lsurf.distance(sample_at[j][s], tri);
+        if (tri < 0) continue;
+        Hit& h = hits[j][s];
+        h.tri = lsoup.triangles[tri];
+        const Eigen::Vector3d corners[3] = {lsoup.points[h.tri[0]], lsoup.points[h.tri[1]], lsoup.points[h.tri[2]]};
+        closest_barycentric(corners, sample_at[j][s], h.bary);
       }
+    });
+    Normal ne(pattern, nv);
+    for (size_t j = 0; j < np; ++j) {
+      const std::vector<AffineVertex>& av = affine[j];
+      for (size_t s = 0; s < samples.size(); ++s)
+        if (hits[j][s].tri[0] >= 0) ne.add(hits[j][s].tri.data(), hits[j][s].bary.data(), 3, av, x, sample_at[j][s]);
       // The LOD's vertices onto the original.
       for (auto vh : lod.vertices()) {
         if (!has_target[j][vh.idx()]) continue;

@@ -24,6 +24,9 @@ struct RefitSettings {
   int rounds = 3;
   double regularization = 1e-3;  ///< weight of the pull toward the decimated position, relative to one residual
   size_t max_samples = 20000;    ///< original points (vertices, then centroids) per pose at most, evenly strided
+  /// Threads taking poses in turn (the answer does not depend on it; each holds one search tree of the posed
+  /// original at a time).
+  int threads = 1;
 };
 
 struct RefitReport {

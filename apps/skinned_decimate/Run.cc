@@ -217,7 +217,9 @@ json run_character(const Mesh& mesh, const std::string& name, const Options& opt
   if (opt.refit)
     for (auto& [lod, lmesh] : chain) {
       const auto tr = Clock::now();
-      const RefitReport r = refit_positions(lmesh, mesh, poses.examples);
+      RefitSettings fit;
+      fit.threads = opt.threads > 0 ? opt.threads : hardware_threads();
+      const RefitReport r = refit_positions(lmesh, mesh, poses.examples, fit);
       if (!opt.quiet)
         std::cout << "refit " << fmt(100.0 * lod.ratio, 1) << "%: residual " << r.before << " -> " << r.after << " ("
                   << r.rounds << " rounds, " << fmt(seconds(tr, Clock::now()), 2) << " s)\n";
