@@ -122,16 +122,27 @@ double heldout_rms(const Mesh& original, Mesh lod) {
 
 bool g_heldout = true;
 bool g_lazy_only = false;
+bool g_classic_only = false;
 int g_threads = 2;
 
 // Each workload is decimated by OpenMesh's DecimaterT and by LazyDecimaterT (one thread, then
 // g_threads), with the static and the skinned modules, in the same process.
 json run_workload(const std::string& name, const Mesh& input, size_t target, OpenMeshSkinned::CapStrategy strategy) {
+  if (g_classic_only) {  // for profiling the skinned modules under DecimaterT alone
+    Mesh classic = input;
+    json counts;
+    const double s = seconds([&] { counts = decimate_skinned<Classic>(classic, target, 4, strategy); });
+    json j = {{"workload", name}, {"skinned_s", s}, {"triangles_out", live_faces(classic)}, {"counts", counts}};
+    if (g_heldout) j["heldout_rms_decimatert"] = heldout_rms(input, classic);
+    return j;
+  }
   if (g_lazy_only) {  // for profiling the lazy driver alone
     Mesh lazy = input;
     json counts;
     const double s = seconds([&] { counts = decimate_skinned<Lazy>(lazy, target, 4, strategy, g_threads); });
-    return {{"workload", name}, {"skinned_lazy_s", s}, {"triangles_out_lazy", live_faces(lazy)}, {"counts", counts}};
+    json j = {{"workload", name}, {"skinned_lazy_s", s}, {"triangles_out_lazy", live_faces(lazy)}, {"counts", counts}};
+    if (g_heldout) j["heldout_rms_lazy"] = heldout_rms(input, lazy);
+    return j;
   }
   const double static_s = time_static<Classic>(input, target);
   const double static_lazy_s = time_static<Lazy>(input, target);
@@ -235,6 +246,7 @@ int main(int argc, char** argv) {
   app.add_option("--threads", g_threads, "Threads of the second LazyDecimaterT run (default 2)");
   app.add_flag("!--no-heldout", g_heldout, "Skip the held-out error of the skinned LODs");
   app.add_flag("--lazy-only", g_lazy_only, "Only the skinned modules under LazyDecimaterT on --threads (profiling)");
+  app.add_flag("--classic-only", g_classic_only, "Only the skinned modules under OpenMesh's DecimaterT (profiling)");
   std::vector<std::string> write;
   app.add_option("--write", write,
                  "NAME FILE: write a benchmark character as GLB and exit. human (Testwuson subdivided three "
