@@ -41,6 +41,8 @@ class BatchPricing {
 public:
   virtual ~BatchPricing() = default;
   virtual void price_all_edges(int threads) = 0;
+  /// The driver's run is over (a module may stop threads it started for it).
+  virtual void end_of_run() {}
 };
 
 /** A priority module whose price of a collapse depends only on its two endpoints (their positions and

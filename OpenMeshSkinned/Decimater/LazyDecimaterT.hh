@@ -36,7 +36,8 @@ struct LazyDecimaterStats {
  *    so nothing is taken out of order;
  *  - binary modules are asked when a candidate is popped with an up-to-date stamp, right before the
  *    collapse: verdicts are never stale (modules learn this from checks_at_pop(), DriverHints.hh).
- *  Modules implementing BatchPricing compute their answers for all edges first on set_threads() threads.
+ *  Modules implementing BatchPricing compute their answers for all edges first on set_threads() threads
+ *  (and may keep a thread working during the run: the shared solver solves ahead, SolveAhead.hh).
  *  When the priority module prices both directions of an edge alike (EdgePriority), the heap holds edges,
  *  and a popped edge collapses in the first legal direction.
  *
@@ -230,6 +231,8 @@ private:
       if (!this->notify_observer(done)) break;
     }
     heap_ = {};
+    for (Module* m : modules_)
+      if (auto* b = dynamic_cast<BatchPricing*>(m)) b->end_of_run();
     return done;
   }
 

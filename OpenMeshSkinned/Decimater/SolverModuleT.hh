@@ -54,7 +54,11 @@ public:
   void postprocess_collapse(const CollapseInfo& ci) override { solver_->end_collapse(ci); }
   /// Solves every edge ahead on \p threads threads (LazyDecimaterT calls it; the modules share one solver,
   /// so the second module's call finds everything done).
-  void price_all_edges(int threads) override { solver_->solve_all_edges(threads); }
+  void price_all_edges(int threads) override {
+    solver_->solve_all_edges(threads);
+    solver_->start_solving_ahead(threads);
+  }
+  void end_of_run() override { solver_->stop_solving_ahead(); }
 
   /// The shared solver: settings and counters (solves, cache hits, Ceres calls, forced flips).
   CollapseSolverT<MeshT>& solver() { return *solver_; }

@@ -19,6 +19,7 @@
 #include "OpenMeshSkinned/Decimater/UvTransferT.hh"
 #include "OpenMeshSkinned/Solver/EdgeCache.hh"
 #include "OpenMeshSkinned/Solver/PoseCacheT.hh"
+#include "OpenMeshSkinned/Solver/SolveAhead.hh"
 #include "OpenMeshSkinned/Solver/SolverSettings.hh"
 #include "OpenMeshSkinned/Solver/StaleVerdictsT.hh"
 
@@ -148,6 +149,7 @@ public:
     ++stats_.requests;
     const int e = mesh_.edge_handle(ci.v0v1).idx();
     const int a = std::min(ci.v0.idx(), ci.v1.idx()), b = std::max(ci.v0.idx(), ci.v1.idx());
+    if (ahead_) ahead_->settle(e);
     if (const CollapseResult* hit = cache_.find(e, a, b)) {
       ++stats_.cache_hits;
       return *hit;
@@ -205,6 +207,23 @@ public:
       batch_weights_.kkt_feasible += c.kkt_feasible;
       batch_weights_.ceres_calls += c.ceres_calls;
     }
+  }
+
+  /** Under a driver that asks binary modules at pop time, with \p threads > 1: a worker thread solves the
+   *  edges each collapse makes stale while the driver goes on (SolveAhead.hh; the answers are the same).
+   *  Not with a module's own cost model, which need not be safe to call concurrently. */
+  void start_solving_ahead(int threads) {
+    if (threads > 1 && checks_at_pop_ && prepared_ && !model_ && settings_.placement && !ahead_)
+      ahead_ = std::make_unique<SolveAhead>(cache_, mesh_.n_edges(), settings_, weights_);
+  }
+  void stop_solving_ahead() {
+    if (!ahead_) return;
+    ahead_->stop();
+    const WeightSolverStats& w = ahead_->worker_stats();
+    batch_weights_.solves += w.solves;
+    batch_weights_.kkt_feasible += w.kkt_feasible;
+    batch_weights_.ceres_calls += w.ceres_calls;
+    ahead_.reset();
   }
 
   /** Whether collapsing \p ci, with the merged vertex at \p rest with skin \p w, turns any remaining face
@@ -290,6 +309,16 @@ public:
     cache_.touch(v0.idx());
     if (model_ && model_->ring_dependent())
       for (auto v : mesh_.vv_range(v1)) cache_.touch(v.idx());
+    if (ahead_)
+      for (auto h : mesh_.voh_range(v1)) {
+        const int a = std::min(v1.idx(), mesh_.to_vertex_handle(h).idx());
+        const int b = std::max(v1.idx(), mesh_.to_vertex_handle(h).idx());
+        const int e = mesh_.edge_handle(h).idx();
+        if (EdgeProblem* p = ahead_->reserve(e, a, b, cache_.stamp(a), cache_.stamp(b))) {
+          load_problem(VertexHandle(a), VertexHandle(b), *p);
+          ahead_->submit();
+        }
+      }
     // Moved or not, v1 now holds v0's faces: verdicts around it may be stale. (After the stamps: the
     // re-checks must not reuse answers cached for v1 as it was.)
     if (settings_.placement && settings_.fold_check && !checks_at_pop_)
@@ -380,6 +409,7 @@ private:
   MorphTransferT<Mesh> morph_;
   StaleVerdictsT<Mesh> stale_;
   EdgeCache cache_;
+  std::unique_ptr<SolveAhead> ahead_;
   bool prepared_ = false;
   bool checks_at_pop_ = false;
   bool solved_ahead_ = false;

@@ -24,6 +24,8 @@ public:
   }
   /// Vertex \p v changed: answers for its edges are stale.
   void touch(int v) { ++stamp_[v]; }
+  /// How often \p v changed.
+  uint32_t stamp(int v) const { return stamp_[v]; }
 
   /// The answer for edge \p e between vertices \p a < \p b, or null when there is none for them as they are.
   const CollapseResult* find(int e, int a, int b) const {
@@ -37,6 +39,18 @@ public:
     x.vb = b;
     x.sa = stamp_[a];
     x.sb = stamp_[b];
+    x.filled = true;
+    return x.result;
+  }
+
+  /// As store(), with the stamps the answer was solved at (SolveAhead's worker, which must not read the
+  /// stamps the mesh thread writes).
+  CollapseResult& store_solved(int e, int a, int b, uint32_t sa, uint32_t sb) {
+    Entry& x = entries_[e];
+    x.va = a;
+    x.vb = b;
+    x.sa = sa;
+    x.sb = sb;
     x.filled = true;
     return x.result;
   }

@@ -1,0 +1,107 @@
+// SolveAhead: a worker solves submitted edges into the edge cache; its answers are the serial solve's, and
+// an edge whose job it has not started goes back to the mesh thread.
+#include <OpenMeshSkinned/Solver/SolveAhead.hh>
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <random>
+#include <thread>
+
+using namespace OpenMeshSkinned;
+
+namespace {
+
+// A random edge: two or three joints, three poses of random rigid motions, random planes per pose.
+EdgeProblem random_problem(std::mt19937& rng) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  EdgeProblem p;
+  Influences wa, wb;
+  wa.push(0, 0.6);
+  wa.push(1, 0.4);
+  wb.push(1, 0.7);
+  wb.push(u(rng) > 0.0 ? 2 : 0, 0.3);
+  wa.sort();
+  wb.sort();
+  p.set_skins(wa, wb);
+  p.resize(3);
+  for (int j = 0; j < 3; ++j) {
+    Pose pose = Pose::identity(3);
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::Matrix3d R =
+          Eigen::AngleAxisd(0.3 * u(rng), Eigen::Vector3d(u(rng), u(rng), 1.0).normalized()).toRotationMatrix();
+      pose.joint[k].leftCols<3>() = R;
+      pose.joint[k].col(3) = 0.2 * Eigen::Vector3d(u(rng), u(rng), u(rng));
+    }
+    p.set_pose(j, pose);
+    for (int f = 0; f < 4; ++f) {
+      const Eigen::Vector3d n = Eigen::Vector3d(u(rng), u(rng), u(rng)).normalized();
+      p.quadric[j] += PoseQuadric::plane(n, 0.3 * u(rng), 0.5 + 0.5 * u(rng));
+    }
+  }
+  p.pa = Eigen::Vector3d(u(rng), u(rng), u(rng));
+  p.pb = p.pa + 0.1 * Eigen::Vector3d(u(rng), u(rng), u(rng));
+  return p;
+}
+
+}  // namespace
+
+TEST(SolveAhead, TheWorkersAnswersAreTheSerialSolvesAndLandInTheCache) {
+  constexpr int kEdges = 300;
+  std::mt19937 rng(5);
+  std::vector<EdgeProblem> problems;
+  for (int e = 0; e < kEdges; ++e) problems.push_back(random_problem(rng));
+  EdgeCache cache;
+  cache.reset(kEdges, 2 * kEdges);
+  const SolveSettings settings;
+  WeightSolver serial;
+  SolveAhead ahead(cache, kEdges, settings, serial);
+  for (int e = 0; e < kEdges; ++e) {
+    EdgeProblem* p = ahead.reserve(e, 2 * e, 2 * e + 1, 0, 0);
+    ASSERT_NE(p, nullptr);
+    *p = problems[e];
+    ahead.submit();
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (ahead.solved() < kEdges && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  ASSERT_EQ(ahead.solved(), size_t(kEdges));
+  for (int e = 0; e < kEdges; ++e) {
+    ahead.settle(e);
+    const CollapseResult* got = cache.find(e, 2 * e, 2 * e + 1);
+    ASSERT_NE(got, nullptr) << "edge " << e;
+    CollapseResult want;
+    solve_collapse(problems[e], settings, serial, want);
+    EXPECT_EQ(got->position, want.position) << "edge " << e;
+    EXPECT_EQ(got->error, want.error);
+    EXPECT_EQ(got->weights, want.weights);
+    EXPECT_EQ(got->valid, want.valid);
+  }
+  // Answers are tied to the stamps they were solved at: a vertex that changed since has none.
+  cache.touch(0);
+  EXPECT_EQ(cache.find(0, 0, 1), nullptr);
+  ahead.stop();
+  EXPECT_GT(ahead.worker_stats().solves, 0u);
+}
+
+TEST(SolveAhead, AJobTheWorkerHasNotStartedGoesBackToTheMeshThread) {
+  std::mt19937 rng(6);
+  EdgeCache cache;
+  cache.reset(4, 8);
+  WeightSolver like;
+  SolveAhead ahead(cache, 4, SolveSettings{}, like);
+  ahead.stop();  // nothing will be started
+  for (int e = 0; e < 4; ++e) {
+    EdgeProblem* p = ahead.reserve(e, 2 * e, 2 * e + 1, 0, 0);
+    ASSERT_NE(p, nullptr);
+    *p = random_problem(rng);
+    ahead.submit();
+  }
+  for (int e = 0; e < 4; ++e) {
+    ahead.settle(e);  // cancels: the entry is the mesh thread's, and empty
+    EXPECT_EQ(cache.find(e, 2 * e, 2 * e + 1), nullptr);
+    cache.store(e, 2 * e, 2 * e + 1).error = 7.0;  // what the mesh thread then solves stays
+  }
+  for (int e = 0; e < 4; ++e) EXPECT_EQ(cache.find(e, 2 * e, 2 * e + 1)->error, 7.0);
+  EXPECT_EQ(ahead.solved(), 0u);
+}
