@@ -95,25 +95,38 @@ bool WeightSolver::solve_kkt(const Mat& H, const Vec& start, double mu, const Ma
   int r = 0;
   for (int k = 0; k < m; ++k)
     if (active[k]) idx[r++] = k;
-  // Stationarity of a^T (H + mu I) a - 2 mu a0^T a with multiplier l for sum(a) = 1:
-  //   [ 2(H + mu I)  1 ] [a]   [ 2 mu a0 ]
-  //   [     1^T      0 ] [l] = [    1    ]
-  // Scaled so that the H block is of order 1 next to the constraint's ones (the answer a does not change,
-  // only the multiplier): Gram matrices of 1e9 and more otherwise make the system numerically singular.
+  // Minimise a^T (H + mu I) a - 2 mu a0^T a subject to sum(a) = 1 (the paper's KKT system, eq. 4) by the
+  // null-space method: with the last active weight 1 - sum(others), the r - 1 free weights solve the
+  // reduced system N^T P N w = N^T (b - P e_r), symmetric positive definite (P = H + mu I is), so an LDLT
+  // of size r - 1 instead of a pivoted LU of the (r + 1)-square saddle-point matrix; the same answer.
+  // Scaled so that P is of order 1 (Gram matrices of 1e9 and more otherwise lose the small pull term).
   double diag = mu;
   for (int i = 0; i < r; ++i) diag += std::abs(H(idx[i], idx[i])) / r;
-  const double s = 2.0 / diag;
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMax + 1, kMax + 1> K(r + 1, r + 1);
-  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMax + 1, 1> rhs(r + 1);
-  for (int i = 0; i < r; ++i) {
-    for (int j = 0; j < r; ++j) K(i, j) = s * H(idx[i], idx[j]);
-    K(i, i) += s * mu;
-    K(i, r) = K(r, i) = 1.0;
-    rhs[i] = s * mu * start[idx[i]];
+  const double s = 1.0 / diag;
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMax, 1> x(r);
+  if (r == 1) {
+    x[0] = 1.0;
+  } else {
+    const int n = r - 1, last = idx[r - 1];
+    const double p_rr = s * (H(last, last) + mu), b_r = s * mu * start[last];
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMax, kMax> R(n, n);
+    Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMax, 1> g(n);
+    for (int i = 0; i < n; ++i) {
+      const double p_ir = s * H(idx[i], last);
+      for (int j = 0; j < n; ++j) R(i, j) = s * H(idx[i], idx[j]) - p_ir - s * H(last, idx[j]) + p_rr;
+      R(i, i) += s * mu;
+      g[i] = (s * mu * start[idx[i]] - p_ir) - (b_r - p_rr);
+    }
+    const Eigen::LDLT<decltype(R)> ldlt(R);
+    if (ldlt.info() != Eigen::Success) return false;
+    const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMax, 1> w = ldlt.solve(g);
+    double rest = 1.0;
+    for (int i = 0; i < n; ++i) {
+      x[i] = w[i];
+      rest -= w[i];
+    }
+    x[n] = rest;
   }
-  K(r, r) = 0.0;
-  rhs[r] = 1.0;
-  const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMax + 1, 1> x = K.fullPivLu().solve(rhs);
   alpha.setZero(m);
   for (int i = 0; i < r; ++i)
     if (!std::isfinite(x[i])) return false;
