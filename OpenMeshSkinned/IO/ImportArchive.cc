@@ -8,7 +8,9 @@
 #include <cereal/types/string.hpp>
 #include <cereal/types/vector.hpp>
 
-#include <sstream>
+#include <istream>
+#include <ostream>
+#include <streambuf>
 
 // Fixed-size Eigen types as raw bytes: both ends are the same build on the same machine.
 namespace cereal {
@@ -97,9 +99,43 @@ struct Flat {
   }
 };
 
+// Writes straight onto the end of a string.
+class AppendBuf : public std::streambuf {
+public:
+  explicit AppendBuf(std::string& s) : s_(s) {}
+
+protected:
+  std::streamsize xsputn(const char* p, std::streamsize n) override {
+    s_.append(p, size_t(n));
+    return n;
+  }
+  int_type overflow(int_type c) override {
+    if (!traits_type::eq_int_type(c, traits_type::eof())) s_.push_back(traits_type::to_char_type(c));
+    return traits_type::not_eof(c);
+  }
+
+private:
+  std::string& s_;
+};
+
+// Reads bytes where they are.
+class ViewBuf : public std::streambuf {
+public:
+  ViewBuf(const char* data, size_t size) {
+    char* p = const_cast<char*>(data);  // the get area is only read
+    setg(p, p, p + size);
+  }
+};
+
 }  // namespace
 
 std::string save_import(const SkinnedMesh& mesh, const ImportReport& report) {
+  std::string out;
+  append_import(mesh, report, out);
+  return out;
+}
+
+void append_import(const SkinnedMesh& mesh, const ImportReport& report, std::string& out) {
   Flat f;
   const auto h_inf = influences_handle(mesh);
   const auto h_fmat = face_material_handle(mesh);
@@ -131,18 +167,24 @@ std::string save_import(const SkinnedMesh& mesh, const ImportReport& report) {
   f.clips = clips(mesh);
   f.materials = materials(mesh);
 
-  std::ostringstream os(std::ios::binary);
-  {
-    cereal::BinaryOutputArchive ar(os);
-    ar(kMagic, kVersion, f, const_cast<ImportReport&>(report));
-  }
-  return os.str();
+  out.reserve(out.size() + 8 * (f.points.size() + f.corner_normals.size() + f.inf_weights.size()) +
+              4 * (f.face_vertices.size() + f.face_material.size() + f.corner_uvs.size() + f.inf_joints.size()) +
+              (1 << 16));
+  AppendBuf buf(out);
+  std::ostream os(&buf);
+  cereal::BinaryOutputArchive ar(os);
+  ar(kMagic, kVersion, f, const_cast<ImportReport&>(report));
 }
 
 void load_import(const std::string& bytes, SkinnedMesh& mesh, ImportReport& report) {
+  load_import(bytes.data(), bytes.size(), mesh, report);
+}
+
+void load_import(const char* data, size_t size, SkinnedMesh& mesh, ImportReport& report) {
   Flat f;
   try {
-    std::istringstream is(bytes, std::ios::binary);
+    ViewBuf buf(data, size);
+    std::istream is(&buf);
     cereal::BinaryInputArchive ar(is);
     uint32_t magic = 0, version = 0;
     ar(magic, version);

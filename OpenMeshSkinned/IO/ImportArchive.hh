@@ -12,8 +12,12 @@
 namespace OpenMeshSkinned {
 
 std::string save_import(const SkinnedMesh& mesh, const ImportReport& report);
+/// As save_import(), appended to \p out (no copy of the archive: a large character's is tens of MB).
+void append_import(const SkinnedMesh& mesh, const ImportReport& report, std::string& out);
 
 /// Rebuilds \p mesh (cleared first) and \p report; throws IOError when \p bytes are not an archive.
 void load_import(const std::string& bytes, SkinnedMesh& mesh, ImportReport& report);
+/// As load_import(), from the \p size bytes at \p data (read in place).
+void load_import(const char* data, size_t size, SkinnedMesh& mesh, ImportReport& report);
 
 }  // namespace OpenMeshSkinned

@@ -66,7 +66,8 @@ bool looks_like_oom(const std::string& message) {
   try {
     SkinnedMesh mesh;
     const ImportReport rep = detail::import_scene(path, read_path, mesh, opt);
-    out = kOk + save_import(mesh, rep);
+    out.assign(1, kOk);
+    append_import(mesh, rep, out);
   } catch (const std::bad_alloc&) {
     out = std::string(1, kOutOfMemory);
   } catch (const std::length_error&) {  // a size read from the file beyond what a container can hold
@@ -143,7 +144,7 @@ ImportReport import_isolated(const std::string& path, const std::string& read_pa
   if (bytes[0] == kError) throw IOError(bytes.substr(1));  // the child's message already names the file
   if (bytes[0] != kOk) throw fail("the reader sent an unreadable result" + format);
   ImportReport rep;
-  load_import(bytes.substr(1), mesh, rep);
+  load_import(bytes.data() + 1, bytes.size() - 1, mesh, rep);
   return rep;
 }
 
