@@ -197,10 +197,12 @@ TEST(Cli, MaxJointsWritesLodsWithTheReducedSkeletonThatStillPlayEveryClip) {
 }
 
 TEST(Cli, TheFoldOverLimitIsRelaxedToComeCloserToTheTargetUnlessStrict) {
+  // Quake's sydney (a frame animation): at 20 triangles every collapse left folds a face in some frame.
   const auto d = scratch("fold");
+  const std::string sydney = std::string("'") + OMSK_TEST_MODELS + "/MD2/sydney.md2'";
   nlohmann::json rep[2];
   for (int i = 0; i < 2; ++i) {
-    const auto r = cli(wuson + " -o f" + std::to_string(i) + ".glb --faces 60 --no-eval --report f" +
+    const auto r = cli(sydney + " -o f" + std::to_string(i) + ".glb --faces 20 --no-eval --report f" +
                            std::to_string(i) + ".json" + (i ? " --strict-fold" : ""),
                        d);
     ASSERT_EQ(r.code, 0) << r.out;

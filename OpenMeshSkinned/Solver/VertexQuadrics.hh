@@ -9,10 +9,16 @@
 
 namespace OpenMeshSkinned {
 
+/// Two faces meeting at an edge with normals closer to opposite than this (cosine) fold a sheet back on
+/// itself (a wing, a flap, an ear modelled as two layers): their planes nearly coincide and cannot see the
+/// sheet's outline pulled inwards, so the edge gets the planes an open border gets.
+inline constexpr double kFoldEdgeCos = -0.7;
+
 /** Adds to \p quadric(v, j) the area-weighted planes of v's faces in configuration j (positions
  *  \p pos(v, j)), for j in [0, n_poses), each also weighted by \p face_weight(face handle), plus, at open
  *  borders, a plane through the border edge perpendicular to its face, weighted by the squared edge length
- *  (and its face's weight), so that borders do not shrink away. */
+ *  (and its face's weight), so that borders do not shrink away; the same for each face at an edge where the
+ *  sheet folds back on itself (kFoldEdgeCos) in every configuration. */
 template <typename Mesh, typename Pos, typename Quadric, typename FaceWeight>
 void accumulate_quadrics(const Mesh& mesh, int n_poses, Pos pos, Quadric quadric, FaceWeight face_weight) {
   using VH = typename Mesh::VertexHandle;
@@ -31,21 +37,45 @@ void accumulate_quadrics(const Mesh& mesh, int n_poses, Pos pos, Quadric quadric
       quadric(c, j) += q;
     }
   }
+  auto face_normal = [&](typename Mesh::FaceHandle fh, int j) {
+    auto fv = mesh.cfv_iter(fh);
+    const Eigen::Vector3d f0 = pos(*fv++, j), f1 = pos(*fv++, j), f2 = pos(*fv, j);
+    return Eigen::Vector3d((f1 - f0).cross(f2 - f0));
+  };
+  // The plane through the edge (a, b) of face fh, perpendicular to the face.
+  auto edge_plane = [&](VH a, VH b, typename Mesh::FaceHandle fh, const Eigen::Vector3d& face_n, int j) {
+    const Eigen::Vector3d e = pos(b, j) - pos(a, j);
+    Eigen::Vector3d n = e.cross(face_n);
+    const double len = n.norm();
+    if (len <= 0.0) return;
+    n /= len;
+    const PoseQuadric q = PoseQuadric::plane(n, -n.dot(pos(a, j)), e.squaredNorm() * face_weight(fh));
+    quadric(a, j) += q;
+    quadric(b, j) += q;
+  };
   for (auto heh : mesh.halfedges()) {
     if (!mesh.is_boundary(heh)) continue;
     const auto fh = mesh.face_handle(mesh.opposite_halfedge_handle(heh));
     const VH a = mesh.from_vertex_handle(heh), b = mesh.to_vertex_handle(heh);
+    for (int j = 0; j < n_poses; ++j) edge_plane(a, b, fh, face_normal(fh, j), j);
+  }
+  for (auto eh : mesh.edges()) {
+    if (mesh.is_boundary(eh)) continue;
+    const auto h0 = mesh.halfedge_handle(eh, 0);
+    const auto f0 = mesh.face_handle(h0), f1 = mesh.face_handle(mesh.opposite_halfedge_handle(h0));
+    const VH a = mesh.from_vertex_handle(h0), b = mesh.to_vertex_handle(h0);
+    // Folded in every configuration: a sheet as modelled, not a crease a pose bends into the skin (the
+    // inside of a bent knee), which would pin the joint's geometry.
+    bool folded = n_poses > 0;
+    for (int j = 0; j < n_poses && folded; ++j) {
+      const Eigen::Vector3d n0 = face_normal(f0, j), n1 = face_normal(f1, j);
+      const double l = n0.norm() * n1.norm();
+      folded = l > 0.0 && n0.dot(n1) < kFoldEdgeCos * l;
+    }
+    if (!folded) continue;
     for (int j = 0; j < n_poses; ++j) {
-      auto fv = mesh.cfv_iter(fh);
-      const Eigen::Vector3d f0 = pos(*fv++, j), f1 = pos(*fv++, j), f2 = pos(*fv, j);
-      const Eigen::Vector3d e = pos(b, j) - pos(a, j);
-      Eigen::Vector3d n = e.cross((f1 - f0).cross(f2 - f0));
-      const double len = n.norm();
-      if (len <= 0.0) continue;
-      n /= len;
-      const PoseQuadric q = PoseQuadric::plane(n, -n.dot(pos(a, j)), e.squaredNorm() * face_weight(fh));
-      quadric(a, j) += q;
-      quadric(b, j) += q;
+      edge_plane(a, b, f0, face_normal(f0, j), j);
+      edge_plane(a, b, f1, face_normal(f1, j), j);
     }
   }
 }

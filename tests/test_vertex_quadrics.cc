@@ -1,0 +1,57 @@
+// accumulate_quadrics: face planes, border planes, and the planes of a sheet folded back on itself.
+#include "helpers.hh"
+
+#include <OpenMeshSkinned/Solver/VertexQuadrics.hh>
+
+using namespace OpenMeshSkinned;
+using omsk_test::Mesh;
+
+namespace {
+
+// Two triangles on the edge p0 = (0,0,0), p1 = (1,0,0): one towards t = (0,1,0) in the plane z = 0, the other
+// towards u, given per configuration (configurations are the quadrics' "poses").
+struct Hinge {
+  Mesh mesh;
+  std::vector<Eigen::Vector3d> u;  // per configuration
+  std::vector<PoseQuadric> q;      // vertex v, configuration j at v * n + j
+  explicit Hinge(std::vector<Eigen::Vector3d> us) : u(std::move(us)) {
+    const auto p0 = mesh.add_vertex({0, 0, 0}), p1 = mesh.add_vertex({1, 0, 0});
+    const auto t = mesh.add_vertex({0, 1, 0}), w = mesh.add_vertex({0, 0, 0});
+    mesh.add_face(p0, p1, t);
+    mesh.add_face(p1, p0, w);
+    const int n = int(u.size());
+    q.assign(4 * u.size(), PoseQuadric{});
+    accumulate_quadrics(
+        mesh, n,
+        [&](Mesh::VertexHandle v, int j) -> Eigen::Vector3d {
+          return v.idx() == 3 ? u[j] : Eigen::Vector3d(mesh.point(v)[0], mesh.point(v)[1], mesh.point(v)[2]);
+        },
+        [&](Mesh::VertexHandle v, int j) -> PoseQuadric& { return q[v.idx() * n + j]; });
+  }
+};
+
+}  // namespace
+
+TEST(VertexQuadrics, ASheetFoldedBackOnItselfKeepsItsOutline) {
+  // u = (0, 1, 0.01): the second triangle lies back on the first (normals opposite). Both face planes are
+  // z = 0 (about): only the fold's own planes (y = 0, through the edge, across the sheet) price p0 sliding
+  // into the sheet by 0.3, as much as a border would (weight: squared edge length, once per face).
+  const Hinge folded({Eigen::Vector3d(0, 1, 0.01)});
+  const Eigen::Vector3d inward(0, 0.3, 0);
+  EXPECT_GT(folded.q[0](inward), 2 * 0.09 * 0.99);
+  // Opened flat (u = (0, -1, 0)) the same slide costs only what the open borders charge.
+  const Hinge flat({Eigen::Vector3d(0, -1, 0)});
+  EXPECT_LT(flat.q[0](inward), 0.1);
+  // Along the fold nothing changes: the fold's planes contain the edge.
+  EXPECT_NEAR(folded.q[0](Eigen::Vector3d(0.3, 0, 0)) - flat.q[0](Eigen::Vector3d(0.3, 0, 0)), 0.0, 0.02);
+}
+
+TEST(VertexQuadrics, AFoldThatOnlyAPoseMakesIsNoFold) {
+  // Flat in configuration 0, folded in configuration 1 (as the inside of a bent knee): no fold planes in
+  // either, so the pose's crease does not pin the joint.
+  const Hinge bent({Eigen::Vector3d(0, -1, 0), Eigen::Vector3d(0, 1, 0.01)});
+  const Hinge folded({Eigen::Vector3d(0, 1, 0.01)});
+  const Eigen::Vector3d inward(0, 0.3, 0);
+  EXPECT_LT(bent.q[0 * 2 + 1](inward), 0.1);
+  EXPECT_GT(folded.q[0](inward), 0.17);
+}
