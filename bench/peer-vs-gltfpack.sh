@@ -9,7 +9,8 @@
 # (converted once by skinned-decimate --ratio 1), glTF2/simple_skin, DeCoro's leg and the L&S column
 # (omsk-bench --write), and wuson8: Testwuson with its skin diffused over 8 bones (three rounds of
 # Laplacian smoothing of the weight field, 8 heaviest kept, renormalised: OpenMeshSkinned::diffuse_skin_weights).
-# OMSK_PEER_EXTRA adds arguments to ours (e.g. OMSK_PEER_EXTRA=--no-refit). gltfpack runs twice: -se 1 (no error limit: it reaches the ratio) and with its default error limit
+# The last column is the texture-space deviation in the rest pose (omsk-peer's uv_rms, % of the texture's width),
+# where both outputs keep UVs. OMSK_PEER_EXTRA adds arguments to ours (e.g. OMSK_PEER_EXTRA=--no-refit). gltfpack runs twice: -se 1 (no error limit: it reaches the ratio) and with its default error limit
 # (it may stop early; ours is then asked for the same, larger, count: light simplification).
 # faerie and sydney: Quake MD2 characters animated without a skeleton (198 stored frames each, read by
 # skinned-decimate into one morph-target clip and written with --ratio 1); ours decimates them with its
@@ -42,8 +43,8 @@ inputs=("$work/wuson.glb" "$work/fbx.glb" "$models/glTF2/simple_skin/simple_skin
 triangles() { grep -o 'output: 1 mesh primitives ([0-9]* triangles' "$1" | grep -o '[0-9]* triangles' | cut -d' ' -f1; }
 field() { grep "\"candidate\":\"$2\"" "$1" | grep -o "\"$3\":[0-9.e+-]*" | cut -d: -f2; }
 
-printf '%-14s %-9s %6s %9s | %10s %10s %7s | %10s %10s %7s\n' character gltfpack ratio triangles \
-  "gp RMS%" "ours RMS%" "ratio" "gp Haus%" "ours Haus%" "ratio"
+printf '%-14s %-9s %6s %9s | %10s %10s %7s | %10s %10s %7s | %13s\n' character gltfpack ratio triangles \
+  "gp RMS%" "ours RMS%" "ratio" "gp Haus%" "ours Haus%" "ratio" "UV RMS gp/us"
 for in in "${inputs[@]}"; do
   name=$(basename "${in%.*}")
   for r in $ratios; do
@@ -65,9 +66,15 @@ for in in "${inputs[@]}"; do
       gh=$(field "$work/peer.jsonl" "$work/gp.glb" heldout_hausdorff)
       oh=$(field "$work/peer.jsonl" "$work/ours.glb" heldout_hausdorff)
       ot=$(field "$work/peer.jsonl" "$work/ours.glb" triangles)
+      # Texture-space deviation (rest pose, % of the texture's width) where both outputs keep UVs: gltfpack drops
+      # them when no material uses a texture.
+      gu=$(field "$work/peer.jsonl" "$work/gp.glb" uv_rms)
+      ou=$(field "$work/peer.jsonl" "$work/ours.glb" uv_rms)
       awk -v c="$name" -v m="$mode" -v r="$r" -v n="$n" -v ot="$ot" -v gr="$gr" -v or="$or" -v gh="$gh" -v oh="$oh" \
-        'BEGIN {printf "%-14s %-9s %6s %4s/%-4s | %10.4f %10.4f %7.2f | %10.4f %10.4f %7.2f\n", c, m, r, n, ot, gr, or,
-                (gr > 0 ? or / gr : 0), gh, oh, (gh > 0 ? oh / gh : 0)}'
+        -v gu="${gu:--}" -v ou="${ou:--}" \
+        'BEGIN {uv = (gu == "-" || ou == "-") ? "-" : sprintf("%.1f/%.1f", gu, ou);
+                printf "%-14s %-9s %6s %4s/%-4s | %10.4f %10.4f %7.2f | %10.4f %10.4f %7.2f | %13s\n", c, m, r, n, ot, gr,
+                or, (gr > 0 ? or / gr : 0), gh, oh, (gh > 0 ? oh / gh : 0), uv}'
     done
   done
 done

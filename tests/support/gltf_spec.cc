@@ -256,6 +256,11 @@ Soup pose(const tinygltf::Model& model, int anim, double time) {
         ws.push_back(read(model, w->second));
       }
       const int base = static_cast<int>(soup.points.size());
+      const auto tc = prim.attributes.find("TEXCOORD_0");
+      const std::vector<double> uv = tc == prim.attributes.end() ? std::vector<double>() : read(model, tc->second);
+      soup.has_uv = soup.has_uv || !uv.empty();
+      for (size_t v = 0; v < nv; ++v)
+        soup.uvs.push_back(uv.size() >= 2 * nv ? Eigen::Vector2d(uv[2 * v], uv[2 * v + 1]) : Eigen::Vector2d::Zero());
       for (size_t v = 0; v < nv; ++v) {
         const Eigen::Vector4d p(pos[3 * v], pos[3 * v + 1], pos[3 * v + 2], 1.0);
         Eigen::Matrix4d m = Eigen::Matrix4d::Zero();

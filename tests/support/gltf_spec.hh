@@ -18,6 +18,9 @@ namespace omsk_spec {
 struct Soup {
   std::vector<Eigen::Vector3d> points;
   std::vector<std::array<int, 3>> triangles;
+  /// TEXCOORD_0 per point ((0, 0) where a primitive has none); has_uv: some primitive had it.
+  std::vector<Eigen::Vector2d> uvs;
+  bool has_uv = false;
 };
 
 /// Loads a .gltf or .glb; throws std::runtime_error with tinygltf's message.
