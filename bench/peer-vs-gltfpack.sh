@@ -68,8 +68,8 @@ for in in "${inputs[@]}"; do
       ot=$(field "$work/peer.jsonl" "$work/ours.glb" triangles)
       # Texture-space deviation (rest pose, % of the texture's width) where both outputs keep UVs: gltfpack drops
       # them when no material uses a texture.
-      gu=$(field "$work/peer.jsonl" "$work/gp.glb" uv_rms)
-      ou=$(field "$work/peer.jsonl" "$work/ours.glb" uv_rms)
+      gu=$(field "$work/peer.jsonl" "$work/gp.glb" uv_rms || true)
+      ou=$(field "$work/peer.jsonl" "$work/ours.glb" uv_rms || true)
       awk -v c="$name" -v m="$mode" -v r="$r" -v n="$n" -v ot="$ot" -v gr="$gr" -v or="$or" -v gh="$gh" -v oh="$oh" \
         -v gu="${gu:--}" -v ou="${ou:--}" \
         'BEGIN {uv = (gu == "-" || ou == "-") ? "-" : sprintf("%.1f/%.1f", gu, ou);

@@ -210,9 +210,8 @@ private:
         price(c.slot, only_selected);
         continue;
       }
-      const HalfedgeHandle h =
-          by_edge_ ? legal_direction(c.slot, only_selected)
-                   : (eligible(h0, only_selected) ? legal_direction(c.slot, only_selected) : HalfedgeHandle());
+      if (!by_edge_ && !eligible(h0, only_selected)) continue;
+      const HalfedgeHandle h = legal_direction(c.slot, only_selected);
       if (!h.is_valid()) {
         ++stats_.refused;  // queued again when its neighbourhood changes
         continue;

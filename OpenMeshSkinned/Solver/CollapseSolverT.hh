@@ -409,7 +409,7 @@ private:
   MorphTransferT<Mesh> morph_;
   StaleVerdictsT<Mesh> stale_;
   EdgeCache cache_;
-  std::unique_ptr<SolveAhead> ahead_;
+  std::unique_ptr<SolveAhead> ahead_;  // after cache_: its worker stops before the cache it writes into goes
   bool prepared_ = false;
   bool checks_at_pop_ = false;
   bool solved_ahead_ = false;
