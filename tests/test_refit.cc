@@ -106,4 +106,3 @@ TEST(Refit, TheAnswerDoesNotDependOnTheThreadCount) {
   EXPECT_EQ(r[0].after, r[1].after);
   omsk_test::expect_same_mesh(fitted[0], fitted[1]);
 }
-

@@ -2,8 +2,8 @@
 #include <OpenMeshSkinned/Solver/SkinnedQuadricSolve.hh>
 #include <OpenMeshSkinned/Solver/TruncatedSolve.hh>
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include <cmath>
 #include <random>
@@ -207,4 +207,3 @@ TEST(TruncatedSolve, TheInverseShortcutAgreesWithThePseudoInverseEverywhere) {
   EXPECT_GT(full_count, 100);
   EXPECT_LT(full_count, 1900);
 }
-
