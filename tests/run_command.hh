@@ -1,6 +1,7 @@
 #pragma once
 // Runs a command line in a folder and collects its exit code and combined output.
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
@@ -22,6 +23,15 @@ inline CommandResult run_command(const std::string& exe, const std::string& args
   const int status = pclose(p);
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+/// A fresh, empty folder TMP/omsk_<kind>_<pid>/<name> for one test's files.
+inline std::filesystem::path scratch_dir(const std::string& kind, const std::string& name) {
+  const std::filesystem::path d =
+      std::filesystem::temp_directory_path() / ("omsk_" + kind + "_" + std::to_string(::getpid())) / name;
+  std::filesystem::remove_all(d);
+  std::filesystem::create_directories(d);
+  return d;
 }
 
 }  // namespace omsk_test

@@ -19,11 +19,7 @@ namespace {
 omsk_test::CommandResult cli(const std::string& args, const fs::path& cwd) {
   return omsk_test::run_command(OMSK_CLI_EXE, args, cwd);
 }
-fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("omsk_cli_" + std::to_string(::getpid())) / name;
-  fs::create_directories(d);
-  return d;
-}
+fs::path scratch(const std::string& name) { return omsk_test::scratch_dir("cli", name); }
 const std::string wuson = std::string("'") + OMSK_TEST_MODELS + "/X/Testwuson.X'";
 }  // namespace
 

@@ -20,12 +20,7 @@ namespace {
 omsk_test::CommandResult cli(const std::string& args, const fs::path& cwd) {
   return omsk_test::run_command(OMSK_CLI_EXE, args, cwd);
 }
-fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("omsk_cli_frames_" + std::to_string(::getpid())) / name;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path scratch(const std::string& name) { return omsk_test::scratch_dir("cli_frames", name); }
 const std::string faerie = std::string("'") + OMSK_TEST_MODELS + "/MD2/faerie.md2'";
 
 tinygltf::Model load(const fs::path& p) {

@@ -20,12 +20,7 @@ namespace {
 omsk_test::CommandResult cli(const std::string& args, const fs::path& cwd) {
   return omsk_test::run_command(OMSK_CLI_EXE, args, cwd);
 }
-fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("omsk_protect_" + std::to_string(::getpid())) / name;
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path scratch(const std::string& name) { return omsk_test::scratch_dir("protect", name); }
 std::string read(const fs::path& p) {
   std::ifstream f(p, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(f), {});

@@ -22,11 +22,7 @@ std::string base64_decode(std::string const& s);  // exported by Debian's libtin
 namespace {
 const std::string wuson = std::string("'") + OMSK_TEST_MODELS + "/X/Testwuson.X'";
 
-fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("omsk_html_" + std::to_string(::getpid())) / name;
-  fs::create_directories(d);
-  return d;
-}
+fs::path scratch(const std::string& name) { return omsk_test::scratch_dir("html", name); }
 std::string slurp(const fs::path& p) {
   std::ifstream f(p, std::ios::binary);
   std::ostringstream s;

@@ -84,7 +84,10 @@ std::vector<double> times_of(const tinygltf::Model& m, int a, int n = 9) {
 
 Soup library_posed(const OpenMeshSkinned::SkinnedMesh& mesh, const OpenMeshSkinned::Pose& pose) {
   const auto s = OpenMeshSkinned::posed_soup(mesh, pose);
-  return {s.points, s.triangles};
+  Soup out;
+  out.points = s.points;
+  out.triangles = s.triangles;
+  return out;
 }
 
 // Largest distance, either way, between the vertices of two posed surfaces, over all frames of every

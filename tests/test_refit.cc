@@ -24,6 +24,19 @@ double mean_rms(const Mesh& original, const Mesh& lod, const std::vector<Pose>& 
   return sum / poses.size();
 }
 
+// \p original decimated to \p faces by the skinned modules under the lazy driver, garbage-collected.
+Mesh decimated(const Mesh& original, size_t faces) {
+  Mesh lod = original;
+  {
+    LazyDecimaterT<Mesh> dec(lod);
+    omsk_test::SkinnedModules<LazyDecimaterT<Mesh>> m(dec);
+    EXPECT_TRUE(dec.initialize());
+    dec.decimate_to_faces(0, faces);
+  }
+  lod.garbage_collection();
+  return lod;
+}
+
 }  // namespace
 
 TEST(Refit, PutsAShakenCopyBackOnTheSurface) {
@@ -47,14 +60,7 @@ TEST(Refit, PutsAShakenCopyBackOnTheSurface) {
 
 TEST(Refit, LowersTheErrorOfADecimatedCharacterInFramesItNeverSaw) {
   const Mesh original = omsk_test::load_character("X/Testwuson.X", 8);
-  Mesh lod = original;
-  {
-    LazyDecimaterT<Mesh> dec(lod);
-    omsk_test::SkinnedModules<LazyDecimaterT<Mesh>> m(dec);
-    ASSERT_TRUE(dec.initialize());
-    dec.decimate_to_faces(0, original.n_faces() / 10);
-  }
-  lod.garbage_collection();
+  const Mesh lod = decimated(original, original.n_faces() / 10);
   const auto held = heldout_poses(original);
   const double before = mean_rms(original, lod, held);
   Mesh fitted = lod;
@@ -87,14 +93,7 @@ TEST(Refit, NothingToFitIsNoChange) {
 
 TEST(Refit, TheAnswerDoesNotDependOnTheThreadCount) {
   const Mesh original = omsk_test::load_character("X/Testwuson.X", 8);
-  Mesh lod = original;
-  {
-    LazyDecimaterT<Mesh> dec(lod);
-    omsk_test::SkinnedModules<LazyDecimaterT<Mesh>> m(dec);
-    ASSERT_TRUE(dec.initialize());
-    dec.decimate_to_faces(0, original.n_faces() / 5);
-  }
-  lod.garbage_collection();
+  const Mesh lod = decimated(original, original.n_faces() / 5);
   Mesh fitted[2] = {lod, lod};
   RefitReport r[2];
   for (int t = 0; t < 2; ++t) {

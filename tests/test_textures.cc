@@ -20,11 +20,7 @@ namespace fs = std::filesystem;
 using namespace OpenMeshSkinned;
 
 namespace {
-fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("omsk_tex_" + std::to_string(::getpid())) / name;
-  fs::create_directories(d);
-  return d;
-}
+fs::path scratch(const std::string& name) { return omsk_test::scratch_dir("tex", name); }
 std::string models(const std::string& rel) { return std::string(OMSK_TEST_MODELS) + "/" + rel; }
 
 // The input \p src written to \p dir with its texture reference replaced by \p stored, and \p image
