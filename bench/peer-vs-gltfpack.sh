@@ -10,7 +10,8 @@
 # (omsk-bench --write), and wuson8: Testwuson with its skin diffused over 8 bones (three rounds of
 # Laplacian smoothing of the weight field, 8 heaviest kept, renormalised: OpenMeshSkinned::diffuse_skin_weights).
 # The last column is the texture-space deviation in the rest pose (omsk-peer's uv_rms, % of the texture's width),
-# where both outputs keep UVs. OMSK_PEER_EXTRA adds arguments to ours (e.g. OMSK_PEER_EXTRA=--no-refit). gltfpack runs twice: -se 1 (no error limit: it reaches the ratio) and with its default error limit
+# and its 95th percentile, gltfpack's / ours, where both outputs keep UVs. OMSK_PEER_EXTRA adds arguments to ours
+# (e.g. OMSK_PEER_EXTRA=--no-refit); OMSK_PEER_ONLY keeps the characters named (e.g. "faerie sydney"). gltfpack runs twice: -se 1 (no error limit: it reaches the ratio) and with its default error limit
 # (it may stop early; ours is then asked for the same, larger, count: light simplification).
 # faerie and sydney: Quake MD2 characters animated without a skeleton (198 stored frames each, read by
 # skinned-decimate into one morph-target clip and written with --ratio 1); ours decimates them with its
@@ -43,10 +44,11 @@ inputs=("$work/wuson.glb" "$work/fbx.glb" "$models/glTF2/simple_skin/simple_skin
 triangles() { grep -o 'output: 1 mesh primitives ([0-9]* triangles' "$1" | grep -o '[0-9]* triangles' | cut -d' ' -f1; }
 field() { grep "\"candidate\":\"$2\"" "$1" | grep -o "\"$3\":[0-9.e+-]*" | cut -d: -f2; }
 
-printf '%-14s %-9s %6s %9s | %10s %10s %7s | %10s %10s %7s | %13s\n' character gltfpack ratio triangles \
-  "gp RMS%" "ours RMS%" "ratio" "gp Haus%" "ours Haus%" "ratio" "UV RMS gp/us"
+printf '%-14s %-9s %6s %9s | %10s %10s %7s | %10s %10s %7s | %21s\n' character gltfpack ratio triangles \
+  "gp RMS%" "ours RMS%" "ratio" "gp Haus%" "ours Haus%" "ratio" "UV RMS/p95 gp | ours"
 for in in "${inputs[@]}"; do
   name=$(basename "${in%.*}")
+  if [ -n "${OMSK_PEER_ONLY:-}" ] && [[ " $OMSK_PEER_ONLY " != *" $name "* ]]; then continue; fi
   for r in $ratios; do
     for mode in "-se 1" "default"; do
       extra=()
@@ -70,10 +72,12 @@ for in in "${inputs[@]}"; do
       # them when no material uses a texture.
       gu=$(field "$work/peer.jsonl" "$work/gp.glb" uv_rms || true)
       ou=$(field "$work/peer.jsonl" "$work/ours.glb" uv_rms || true)
+      gp95=$(field "$work/peer.jsonl" "$work/gp.glb" uv_p95 || true)
+      op95=$(field "$work/peer.jsonl" "$work/ours.glb" uv_p95 || true)
       awk -v c="$name" -v m="$mode" -v r="$r" -v n="$n" -v ot="$ot" -v gr="$gr" -v or="$or" -v gh="$gh" -v oh="$oh" \
-        -v gu="${gu:--}" -v ou="${ou:--}" \
-        'BEGIN {uv = (gu == "-" || ou == "-") ? "-" : sprintf("%.1f/%.1f", gu, ou);
-                printf "%-14s %-9s %6s %4s/%-4s | %10.4f %10.4f %7.2f | %10.4f %10.4f %7.2f | %13s\n", c, m, r, n, ot, gr,
+        -v gu="${gu:--}" -v ou="${ou:--}" -v gp95="${gp95:--}" -v op95="${op95:--}" \
+        'BEGIN {uv = (gu == "-" || ou == "-") ? "-" : sprintf("%.1f/%.1f | %.1f/%.1f", gu, gp95, ou, op95);
+                printf "%-14s %-9s %6s %4s/%-4s | %10.4f %10.4f %7.2f | %10.4f %10.4f %7.2f | %21s\n", c, m, r, n, ot, gr,
                 or, (gr > 0 ? or / gr : 0), gh, oh, (gh > 0 ? oh / gh : 0), uv}'
     done
   done

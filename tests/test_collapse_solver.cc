@@ -45,6 +45,7 @@ Mesh two_joint_sheet(int n, double d) {
       mesh.add_face(a, b, e);
       mesh.add_face(a, e, c);
     }
+  clear_corner_attributes(mesh);  // OpenMesh leaves them uninitialised: a stray normal would be a hard edge
   Pose bent = Pose::identity(2);
   bent.joint[1](2, 3) = d;
   example_poses(mesh) = {Pose::identity(2), bent};

@@ -48,6 +48,7 @@ Mesh rigid_sphere(int subdivisions) {
     mesh.property(h, vh.back()) = Influences::rigid(0);
   }
   for (const auto& t : tris) mesh.add_face(vh[t[0]], vh[t[1]], vh[t[2]]);
+  clear_corner_attributes(mesh);  // OpenMesh leaves them uninitialised: a stray normal would be a hard edge
   example_poses(mesh) = {Pose::identity(1)};
   return mesh;
 }

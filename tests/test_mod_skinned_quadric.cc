@@ -137,6 +137,7 @@ TEST(ModSkinnedQuadric, MovedVerticesKeepTheirTextureMapping) {
       mesh.add_face(a, b, d);
       mesh.add_face(a, d, c);
     }
+  clear_corner_attributes(mesh);  // the normals: OpenMesh leaves them uninitialised
   for (auto heh : mesh.halfedges()) {
     const auto p = mesh.point(mesh.to_vertex_handle(heh));
     mesh.set_texcoord2D(heh, Mesh::TexCoord2D(float(p[0]), float(p[1])));

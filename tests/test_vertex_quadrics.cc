@@ -1,4 +1,5 @@
-// accumulate_quadrics: face planes, border planes, and the planes of a sheet folded back on itself.
+// accumulate_quadrics: face planes, border planes, the planes of a sheet folded back on itself and those of a
+// UV seam.
 #include "helpers.hh"
 
 #include <OpenMeshSkinned/Solver/VertexQuadrics.hh>
@@ -9,16 +10,20 @@ using omsk_test::Mesh;
 namespace {
 
 // Two triangles on the edge p0 = (0,0,0), p1 = (1,0,0): one towards t = (0,1,0) in the plane z = 0, the other
-// towards u, given per configuration (configurations are the quadrics' "poses").
+// towards u, given per configuration (configurations are the quadrics' "poses"). With \p seam the two faces
+// belong to different UV charts.
 struct Hinge {
   Mesh mesh;
   std::vector<Eigen::Vector3d> u;  // per configuration
   std::vector<PoseQuadric> q;      // vertex v, configuration j at v * n + j
-  explicit Hinge(std::vector<Eigen::Vector3d> us) : u(std::move(us)) {
+  explicit Hinge(std::vector<Eigen::Vector3d> us, bool seam = false) : u(std::move(us)) {
     const auto p0 = mesh.add_vertex({0, 0, 0}), p1 = mesh.add_vertex({1, 0, 0});
     const auto t = mesh.add_vertex({0, 1, 0}), w = mesh.add_vertex({0, 0, 0});
     mesh.add_face(p0, p1, t);
-    mesh.add_face(p1, p0, w);
+    const auto f1 = mesh.add_face(p1, p0, w);
+    clear_corner_attributes(mesh);
+    if (seam)
+      for (auto h : mesh.fh_range(f1)) mesh.set_texcoord2D(h, Mesh::TexCoord2D(0.5f, 0.5f));
     const int n = int(u.size());
     q.assign(4 * u.size(), PoseQuadric{});
     accumulate_quadrics(
@@ -54,4 +59,15 @@ TEST(VertexQuadrics, AFoldThatOnlyAPoseMakesIsNoFold) {
   const Eigen::Vector3d inward(0, 0.3, 0);
   EXPECT_LT(bent.q[0 * 2 + 1](inward), 0.1);
   EXPECT_GT(folded.q[0](inward), 0.17);
+}
+
+TEST(VertexQuadrics, AUvSeamKeepsItsLineOnAFlatSheet) {
+  // Flat (u = (0, -1, 0)), the two faces in different UV charts: sliding p0 across the seam by 0.3 costs
+  // kSeamPlaneWeight of what a fold charges (a plane per face, weight: squared edge length), so the seam
+  // stays where the texture is cut; along the seam the cost is that of the open borders alone.
+  const Hinge seam({Eigen::Vector3d(0, -1, 0)}, true);
+  const Hinge flat({Eigen::Vector3d(0, -1, 0)});
+  const Eigen::Vector3d inward(0, 0.3, 0), along(0.3, 0, 0);
+  EXPECT_NEAR(seam.q[0](inward) - flat.q[0](inward), kSeamPlaneWeight * 2 * 0.09, 1e-9);
+  EXPECT_NEAR(seam.q[0](along), flat.q[0](along), 1e-12);
 }

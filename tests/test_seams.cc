@@ -1,0 +1,108 @@
+// Attribute seams (Mesh/Seams.hh): UV seams and hard edges of a welded mesh.
+#include "helpers.hh"
+
+#include <OpenMeshSkinned/Mesh/Seams.hh>
+#include <OpenMeshSkinned/Mesh/SkinnedMesh.hh>
+
+#include <algorithm>
+#include <cmath>
+
+using namespace OpenMeshSkinned;
+using omsk_test::Mesh;
+
+namespace {
+
+// A 3x3 vertex grid over [0,2]^2 in z = 0 with UV = position / 2 and normal +z, except that the right column
+// of faces is a separate chart: its UVs are shifted by (+10, 0), so the edges on x = 1 are a UV seam.
+Mesh grid_with_seam() {
+  Mesh mesh;
+  request_skinned_attributes(mesh);
+  std::vector<Mesh::VertexHandle> v;
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) v.push_back(mesh.add_vertex(Mesh::Point(k, i, 0)));
+  for (int i = 0; i < 2; ++i)
+    for (int k = 0; k < 2; ++k) {
+      const auto a = v[i * 3 + k], b = v[i * 3 + k + 1], c = v[(i + 1) * 3 + k], d = v[(i + 1) * 3 + k + 1];
+      for (auto fh : {mesh.add_face(a, b, d), mesh.add_face(a, d, c)})
+        for (auto h : mesh.fh_range(fh)) {
+          const auto p = mesh.point(mesh.to_vertex_handle(h));
+          mesh.set_texcoord2D(h, Mesh::TexCoord2D(p[0] / 2 + (k == 1 ? 10 : 0), p[1] / 2));
+          mesh.set_normal(h, Mesh::Normal(0, 0, 1));
+        }
+    }
+  for (auto h : mesh.halfedges())
+    if (mesh.is_boundary(h)) mesh.set_texcoord2D(h, Mesh::TexCoord2D(-7, -7));  // owned by no face
+  return mesh;
+}
+
+std::vector<std::pair<double, double>> seam_midpoints(const Mesh& mesh) {
+  std::vector<std::pair<double, double>> mids;
+  const std::vector<char> seams = attribute_seams(mesh);
+  for (auto eh : mesh.edges())
+    if (seams[eh.idx()]) {
+      const auto h = mesh.halfedge_handle(eh, 0);
+      const auto m = 0.5 * (mesh.point(mesh.from_vertex_handle(h)) + mesh.point(mesh.to_vertex_handle(h)));
+      mids.emplace_back(m[0], m[1]);
+    }
+  std::sort(mids.begin(), mids.end());
+  return mids;
+}
+
+}  // namespace
+
+TEST(Seams, TheEdgesBetweenTwoUvChartsAreTheSeam) {
+  const Mesh mesh = grid_with_seam();
+  // Only the two interior edges on x = 1 separate the charts; the chart's border halfedges (whatever they
+  // hold) and the edges inside each chart are no seam.
+  const std::vector<std::pair<double, double>> expected = {{1.0, 0.5}, {1.0, 1.5}};
+  EXPECT_EQ(seam_midpoints(mesh), expected);
+}
+
+TEST(Seams, WithoutAttributesThereIsNoSeam) {
+  Mesh zero = grid_with_seam();
+  clear_corner_attributes(zero);
+  EXPECT_TRUE(seam_midpoints(zero).empty());
+}
+
+TEST(Seams, UvsCountOnTexturedMaterialsAndMaterialsAlwaysDo) {
+  Mesh mesh = grid_with_seam();
+  add_skin(mesh);
+  materials(mesh) = {Material{}, Material{}};
+  const auto h_mat = face_material_handle(mesh);
+  for (auto fh : mesh.faces()) mesh.property(h_mat, fh) = 0;
+  // The UV seam of an untextured material shows nothing.
+  EXPECT_TRUE(seam_midpoints(mesh).empty());
+  const std::vector<std::pair<double, double>> x1 = {{1.0, 0.5}, {1.0, 1.5}};
+  materials(mesh)[0].base_color_texture = "skin.png";
+  EXPECT_EQ(seam_midpoints(mesh), x1);
+  // Where two materials meet, the colour changes: a seam without any UV (here: the faces with y > 1).
+  clear_corner_attributes(mesh);
+  for (auto fh : mesh.faces()) {
+    bool top = true;
+    for (auto v : mesh.fv_range(fh)) top = top && mesh.point(v)[1] >= 1.0;
+    mesh.property(h_mat, fh) = top ? 1 : 0;
+  }
+  const std::vector<std::pair<double, double>> y1 = {{0.5, 1.0}, {1.5, 1.0}};
+  EXPECT_EQ(seam_midpoints(mesh), y1);
+}
+
+TEST(Seams, AHardEdgeIsASeamASoftOneIsNot) {
+  Mesh mesh = grid_with_seam();
+  for (auto h : mesh.halfedges()) mesh.set_texcoord2D(h, Mesh::TexCoord2D(0, 0));
+  // Tilt the normals of the face corners with x < 1 (the left column of faces): by 30° the shading stays
+  // smooth across x = 1 (the exporter would average it), by 80° the edge is hard.
+  auto tilt = [&](double degrees) {
+    const double a = degrees * M_PI / 180.0;
+    for (auto fh : mesh.faces()) {
+      bool left = true;
+      for (auto v : mesh.fv_range(fh)) left = left && mesh.point(v)[0] <= 1.0;
+      if (!left) continue;
+      for (auto h : mesh.fh_range(fh)) mesh.set_normal(h, Mesh::Normal(-std::sin(a), 0, std::cos(a)));
+    }
+  };
+  tilt(30);
+  EXPECT_TRUE(seam_midpoints(mesh).empty());
+  tilt(80);
+  const std::vector<std::pair<double, double>> expected = {{1.0, 0.5}, {1.0, 1.5}};
+  EXPECT_EQ(seam_midpoints(mesh), expected);
+}
