@@ -213,3 +213,32 @@ TEST(Cli, TheFoldOverLimitIsRelaxedToComeCloserToTheTargetUnlessStrict) {
   EXPECT_LT(relaxed["faces"].get<size_t>(), strict["faces"].get<size_t>());
   omsk_test::expect_valid_gltf((d / "f0.glb").string());
 }
+
+TEST(Cli, MaxErrorBoundsEveryLodAndStopsWhereTheBoundWould) {
+  const auto d = scratch("max_error");
+  const auto r = cli(wuson + " -o b.glb --lods 0.5,0.1 --max-error 0.5 --no-eval --report b.json --quiet", d);
+  ASSERT_EQ(r.code, 0) << r.out;
+  nlohmann::json rep;
+  std::ifstream(d / "b.json") >> rep;
+  const auto &half = rep["lods"][0], &tenth = rep["lods"][1];
+  // Half the triangles go within the bound; a tenth would need cuts further than 0.5% of the diagonal.
+  EXPECT_TRUE(half["target_reached"].get<bool>());
+  EXPECT_FALSE(tenth["target_reached"].get<bool>());
+  EXPECT_LT(tenth["faces"].get<size_t>(), half["faces"].get<size_t>());
+  for (const auto& l : rep["lods"]) {
+    EXPECT_LE(l["deviation_bound"].get<double>(), 0.5);
+    EXPECT_EQ(l["fold_limit_deg"].get<double>(), 90.0) << "the bound goes before the count";
+  }
+  EXPECT_NE(r.out.find("exceed --max-error"), std::string::npos) << r.out;
+  omsk_test::expect_valid_gltf((d / "b_lod2.glb").string());
+  // Without it, no bound is reported.
+  const auto f = cli(wuson + " -o f.glb --ratio 0.5 --no-eval --no-refit --report f.json --quiet", d);
+  ASSERT_EQ(f.code, 0) << f.out;
+  std::ifstream(d / "f.json") >> rep;
+  EXPECT_TRUE(rep["lods"][0]["deviation_bound"].is_null());
+  // The frame methods place vertices themselves: a bound they would not keep is refused, not ignored.
+  const auto m = cli(std::string("'") + OMSK_TEST_MODELS + "/MD2/faerie.md2' -o m.glb --max-error 1 --quiet", d);
+  EXPECT_NE(m.code, 0);
+  EXPECT_NE(m.out.find("--max-error"), std::string::npos) << m.out;
+  EXPECT_FALSE(fs::exists(d / "m.glb"));
+}

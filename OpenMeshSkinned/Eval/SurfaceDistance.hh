@@ -73,6 +73,20 @@ TriangleSoup posed_soup(const Mesh& mesh, const Pose& pose) {
   return s;
 }
 
+/** The largest distance from a vertex of \p original to \p lod, both posed by each of \p poses: one-sided, at
+ *  the original's vertices (what ModDeviationBoundT bounds while decimating). */
+template <typename Mesh>
+double worst_vertex_deviation(const Mesh& original, const Mesh& lod, const std::vector<Pose>& poses) {
+  double worst = 0.0;
+  for (const Pose& pose : poses) {
+    const MeasuredSurface surface(posed_soup(lod, pose), 0, 1);
+    const std::vector<Eigen::Vector3d> p = skin_positions(original, pose);
+    for (auto vh : original.vertices())
+      if (!original.is_isolated(vh)) worst = std::max(worst, surface.distance(p[vh.idx()]));
+  }
+  return worst;
+}
+
 /// Diagonal of the bounding box of the mesh's non-deleted vertices (rest pose).
 template <typename Mesh>
 double bbox_diagonal(const Mesh& mesh) {

@@ -139,6 +139,10 @@ public:
   int n_poses() const { return poses_.n_poses(); }
   const Pose& pose(int j) const { return poses_.pose(j); }
   const Eigen::Vector3d& posed(VertexHandle v, int j) const { return poses_.posed(v, j); }
+  /// A rest position with a skin, posed in example pose \p j (as a merged vertex would be).
+  Eigen::Vector3d posed_point(const Eigen::Vector3d& rest, const Influences& w, int j) const {
+    return poses_.posed_point(rest, w, j);
+  }
   PoseQuadric& quadric(VertexHandle v, int j) { return poses_.quadric(v, j); }
   const PoseQuadric& quadric(VertexHandle v, int j) const { return poses_.quadric(v, j); }
 

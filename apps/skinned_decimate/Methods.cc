@@ -6,12 +6,14 @@
 #include <OpenMeshSkinned/Decimater/Baselines/ModTriangleCompactnessT.hh>
 #include <OpenMeshSkinned/Decimater/LazyDecimaterT.hh>
 #include <OpenMeshSkinned/Decimater/ModDeformationWeightedQuadricT.hh>
+#include <OpenMeshSkinned/Decimater/ModDeviationBoundT.hh>
 #include <OpenMeshSkinned/Decimater/ModFrameFoldOverT.hh>
 #include <OpenMeshSkinned/Decimater/ModFrameQuadricT.hh>
 #include <OpenMeshSkinned/Decimater/ModJointGuardT.hh>
 #include <OpenMeshSkinned/Decimater/ModSkinnedFoldOverT.hh>
 #include <OpenMeshSkinned/Decimater/ModSkinnedQuadricT.hh>
 #include <OpenMeshSkinned/Decimater/ModWeightCapT.hh>
+#include <OpenMeshSkinned/Eval/SurfaceDistance.hh>
 
 #include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
 #include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
@@ -22,6 +24,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <iostream>
 #include <optional>
 #include <stdexcept>
 
@@ -48,6 +51,7 @@ struct Handles {
   OpenMeshSkinned::ModFrameQuadricT<Mesh>::Handle frames;
   OpenMeshSkinned::ModDeformationWeightedQuadricT<Mesh>::Handle deform;
   OpenMeshSkinned::ModFrameFoldOverT<Mesh>::Handle frame_fold;
+  OpenMeshSkinned::ModDeviationBoundT<Mesh>::Handle bound;
 };
 
 struct MethodModules {
@@ -169,6 +173,17 @@ std::vector<std::pair<Lod, Mesh>> build_chain(Mesh mesh, const std::vector<size_
     dec->module(h.guard).set_tau(opt.joint_guard);
   }
   if (h.skinned.is_valid()) dec->module(h.skinned).set_error_per_area(!opt.energy_error);
+  // The bound needs the shared solver's placement and poses: the frame methods place vertices themselves.
+  const double diagonal = OpenMeshSkinned::bbox_diagonal(mesh);
+  if (opt.max_error > 0.0) {
+    if (!h.frame_fold.is_valid() && !h.frames.is_valid()) {
+      dec->add(h.bound);
+      dec->module(h.bound).set_max_deviation(opt.max_error / 100.0 * diagonal);
+    } else {
+      std::cerr << "skinned-decimate: warning: --max-error does not apply to --method " << method
+                << " (it places vertices itself); its LODs are not bounded\n";
+    }
+  }
   if (opt.threads > 0) dec->set_threads(opt.threads);
   if (!dec->initialize()) throw std::runtime_error("the decimater did not initialize");
   Progress progress(!opt.quiet && isatty(2), n_vertices_in - targets.back() / 2, label);
@@ -184,13 +199,15 @@ std::vector<std::pair<Lod, Mesh>> build_chain(Mesh mesh, const std::vector<size_
     collapses += dec->decimate_to_faces(0, targets[i] + (mesh.n_faces() - live_faces(mesh)));
     Lod lod;
     // Reach the requested count: when every collapse left folds a face by more than 90 degrees in some
-    // pose, allow a larger turn step by step (and say so), unless --strict-fold.
+    // pose, allow a larger turn step by step (and say so), unless --strict-fold, or --max-error, which puts
+    // the bound before the count (what stopped may be the bound: folds would buy nothing but folds).
     auto set_fold = [&](double angle) {
       if (h.fold_over.is_valid()) dec->module(h.fold_over).set_max_angle(angle);
       if (h.frame_fold.is_valid()) dec->module(h.frame_fold).set_max_angle(angle);
       if (h.frames.is_valid()) dec->module(h.frames).set_max_fold_angle(angle);
     };
-    if (!opt.strict_fold && (h.fold_over.is_valid() || h.frame_fold.is_valid() || h.frames.is_valid())) {
+    if (!opt.strict_fold && !h.bound.is_valid() &&
+        (h.fold_over.is_valid() || h.frame_fold.is_valid() || h.frames.is_valid())) {
       for (double angle : {120.0, 150.0, 175.0}) {
         const size_t now = live_faces(mesh);
         if (now <= targets[i]) break;
@@ -203,6 +220,7 @@ std::vector<std::pair<Lod, Mesh>> build_chain(Mesh mesh, const std::vector<size_
     lod.ratio = ratios[i];
     lod.target = targets[i];
     lod.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    if (h.bound.is_valid()) lod.deviation_bound = 100.0 * dec->module(h.bound).bound() / diagonal;
     if (i + 1 == targets.size()) dec.reset();
     // The last level is the working mesh itself; earlier ones are copies (with the deleted elements until
     // garbage collection: the working mesh cannot be renumbered under the solver).

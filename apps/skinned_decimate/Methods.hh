@@ -34,6 +34,7 @@ struct Lod {
   size_t keys = 0;                    // key frames over its clips' channels (fewer with --anim-error)
   int joints = 0;                     // its skeleton's joints (fewer with --max-joints)
   double fold_limit = 90.0;           // the largest face turn allowed to reach the target (degrees)
+  double deviation_bound = -1.0;      // --max-error: bound on the original's vertices' distance, % (< 0: none)
   bool evaluated = false;             // false with --no-eval
   double rms = 0.0, hausdorff = 0.0;  // % of the rest-pose bounding-box diagonal
   std::vector<float> vertex_error;    // per vertex, max over held-out frames, % of the diagonal (--html)

@@ -37,6 +37,7 @@ struct Options {
   std::vector<int> max_joints;  // --max-joints N or N1,N2,... one per LOD (empty: skeleton kept whole)
   double joint_energy = 0.0;    // --joint-energy E: minor joints under it go (0: none by energy)
   bool strict_fold = false;     // --strict-fold: never relax the 90-degree fold-over limit
+  double max_error = 0.0;       // --max-error E, % of the diagonal: bound on the original's vertices (0: none)
   bool method_given = false;
   bool sequences = true;        // --no-sequence: a numbered file is one mesh, not a frame of a sequence
   double fps = 0.0;             // --fps: frame rate of a frame animation (0: 10 for MD2/MD3/MDL, 24 otherwise)

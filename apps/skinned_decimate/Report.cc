@@ -46,8 +46,12 @@ void print_table(const std::string& title, const std::vector<std::pair<Lod, Mesh
     if (lod.faces > lod.target)
       std::cout << "  ratio " << fmt(lod.ratio, 4) << ": target of " << lod.target
                 << " triangles not reached; stopped at " << lod.faces
-                << " (every remaining collapse is refused: it would break the mesh, fold a face in some pose, or "
-                   "remove a vertex --joint-guard keeps)\n";
+                << " (every remaining collapse is refused: it would break the mesh, fold a face in some pose, "
+                   "remove a vertex --joint-guard keeps, or exceed --max-error)\n";
+  for (const auto& [lod, mesh] : chain)
+    if (lod.deviation_bound >= 0.0)
+      std::cout << "  ratio " << fmt(lod.ratio, 4) << ": no vertex of the input is further than "
+                << fmt(lod.deviation_bound, 4) << "% of the diagonal from it in any example pose (--max-error)\n";
 }
 
 void print_comparison(const json& runs) {
@@ -74,6 +78,7 @@ json lod_json(const Lod& lod, const std::vector<OpenMeshSkinned::Clip>& clips,
             {"max_influences", lod.max_influences},
             {"joints", lod.joints},
             {"fold_limit_deg", lod.fold_limit},
+            {"deviation_bound", lod.deviation_bound >= 0.0 ? json(lod.deviation_bound) : json(nullptr)},
             {"keys", lod.keys},
             {"heldout_rms", lod.evaluated ? json(lod.rms) : json(nullptr)},
             {"heldout_hausdorff", lod.evaluated ? json(lod.hausdorff) : json(nullptr)},

@@ -200,6 +200,24 @@ HtmlSection new_section(const std::string& title, const Mesh& mesh, const PoseSc
   return s;
 }
 
+// --max-error after the final fit, which knows nothing of the bound: the fit is kept if the original's
+// vertices are still within the limit of the LOD in every example pose (measured, the solver's way: skin
+// only), and undone otherwise. The LOD's bound is then the measured distance, or the decimation's bound.
+void keep_bound_after_refit(const Mesh& original, Mesh& lmesh, std::vector<Pose> examples,
+                            const std::vector<SkinnedMesh::Point>& decimated, Lod& lod, const Options& opt) {
+  for (Pose& p : examples) p.morph_weights.clear();
+  const double diagonal = bbox_diagonal(original);
+  const double worst = 100.0 * worst_vertex_deviation(original, lmesh, examples) / diagonal;
+  if (worst <= opt.max_error) {
+    lod.deviation_bound = worst;
+    return;
+  }
+  for (auto vh : lmesh.vertices()) lmesh.set_point(vh, decimated[vh.idx()]);
+  if (!opt.quiet)
+    std::cout << "refit " << fmt(100.0 * lod.ratio, 1) << "%: undone (a vertex of the input would be " << fmt(worst, 3)
+              << "% of the diagonal away, over --max-error)\n";
+}
+
 // Runs one character through one method: poses, targets, the chain, its error, the table, the files
 // (staged in \p outputs; none when it is null), the page's views (when \p html is not null: the original
 // first if the section is new). Returns the report entry.
@@ -219,10 +237,14 @@ json run_character(const Mesh& mesh, const std::string& name, const Options& opt
       const auto tr = Clock::now();
       RefitSettings fit;
       fit.threads = opt.threads > 0 ? opt.threads : hardware_threads();
+      std::vector<SkinnedMesh::Point> decimated;
+      if (lod.deviation_bound >= 0.0)
+        for (auto vh : lmesh.vertices()) decimated.push_back(lmesh.point(vh));
       const RefitReport r = refit_positions(lmesh, mesh, poses.examples, fit);
       if (!opt.quiet)
         std::cout << "refit " << fmt(100.0 * lod.ratio, 1) << "%: residual " << r.before << " -> " << r.after << " ("
                   << r.rounds << " rounds, " << fmt(seconds(tr, Clock::now()), 2) << " s)\n";
+      if (lod.deviation_bound >= 0.0) keep_bound_after_refit(mesh, lmesh, poses.examples, decimated, lod, opt);
     }
   const auto t1 = Clock::now();
   const bool want_html = html != nullptr;
@@ -471,6 +493,11 @@ int run(const Options& opt) {
                 << " does not see the morph targets of a mesh animated without a skeleton: it decimates the rest "
                    "shape (use frames)\n";
   }
+  if (o.max_error > 0.0 && !o.compare && (o.method == "frames" || o.method == "deform"))
+    throw UsageError(
+        "--max-error bounds the methods whose vertices the skinned solver places (skinned, decoro, "
+        "dsd, rest, compact, static); --method " +
+        o.method + " places them itself");
   json report;
   const bool page = !opt.html.empty() || !opt.preview.empty();
   std::vector<HtmlSection> sections;

@@ -95,6 +95,12 @@ int main(int argc, char** argv) {
   app.add_flag("--strict-fold", opt.strict_fold,
                "Stop where every collapse would turn a face by more than 90 degrees in some pose (by default the "
                "limit is relaxed to 120, 150, then 175 degrees to reach the target, and the table says so)");
+  app.add_option("--max-error", opt.max_error,
+                 "Bound the worst case: no vertex of the input may end up further than E % of the diagonal from the "
+                 "LOD in any example pose (a collapse that would break it waits; a LOD may stop above its target, "
+                 "and the table says so; the fold-over limit is not relaxed; a final fit that would break it is "
+                 "undone)")
+      ->check(CLI::PositiveNumber);
   app.add_flag("!--no-sequence", opt.sequences,
                "Read a numbered file as one mesh, not as a frame of the sequence its siblings make");
   app.add_option("--fps", opt.fps,
