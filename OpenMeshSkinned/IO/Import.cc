@@ -229,6 +229,14 @@ ImportReport detail::import_scene(const std::string& path, const std::string& re
       QuietOmerr() { omerr().disable(); }
       ~QuietOmerr() { omerr().enable(); }
     } quiet;
+    // Reserved up front, as the archive reader does: grown by doubling, every array and per-element property
+    // would keep up to half its capacity unused for the whole run.
+    size_t nv = 0, nf = 0;
+    for (const MeshInstance& mi : instances) {
+      nv += scene->mMeshes[mi.mesh]->mNumVertices;
+      nf += scene->mMeshes[mi.mesh]->mNumFaces;
+    }
+    mesh.reserve(nv + nv / 32 + 16, nf + nf / 2 + nf / 32 + 16, nf);
     GeometryBuilder geometry(mesh, rep.morph_targets, opt, rep, path);
     for (size_t ii = 0; ii < instances.size(); ++ii) geometry.add(scene, sn, joints, instances[ii], target_base[ii]);
   }
