@@ -241,4 +241,9 @@ TEST(Cli, MaxErrorBoundsEveryLodAndStopsWhereTheBoundWould) {
   EXPECT_NE(m.code, 0);
   EXPECT_NE(m.out.find("--max-error"), std::string::npos) << m.out;
   EXPECT_FALSE(fs::exists(d / "m.glb"));
+  // Nor can the skeleton LoD re-solve the skins after the bound was kept.
+  const auto j = cli(wuson + " -o j.glb --max-error 1 --max-joints 20 --quiet", d);
+  EXPECT_EQ(j.code, 2);
+  EXPECT_NE(j.out.find("--max-joints"), std::string::npos) << j.out;
+  EXPECT_FALSE(fs::exists(d / "j.glb"));
 }

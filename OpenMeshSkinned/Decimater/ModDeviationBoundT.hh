@@ -6,6 +6,8 @@
 #include "OpenMeshSkinned/Mesh/ClosestPoint.hh"
 
 #include <cmath>
+#include <limits>
+#include <stdexcept>
 #include <vector>
 
 namespace OpenMeshSkinned {
@@ -52,6 +54,9 @@ public:
     Solver::initialize();
     MeshT& mesh = Base::mesh();
     P_ = this->solver().n_poses();
+    // A point is an int (v * P_ + j): a quarter of the memory of 64-bit indices, enough for 2^31 of them.
+    if (double(mesh.n_vertices()) * P_ >= double(std::numeric_limits<int>::max()))
+      throw std::length_error("ModDeviationBoundT: vertices x example poses exceed 2^31");
     points_.assign(mesh.n_vertices() * size_t(P_), Eigen::Vector3d::Zero());
     held_.assign(mesh.n_faces(), {});
     bound2_ = 0.0;

@@ -493,6 +493,10 @@ int run(const Options& opt) {
                 << " does not see the morph targets of a mesh animated without a skeleton: it decimates the rest "
                    "shape (use frames)\n";
   }
+  if (o.max_error > 0.0 && (!o.max_joints.empty() || o.joint_energy > 0.0))
+    throw UsageError(
+        "--max-error cannot be combined with --max-joints or --joint-energy: the skeleton LoD re-solves the skins "
+        "after the decimation, and the bound would no longer hold");
   if (o.max_error > 0.0 && !o.compare && (o.method == "frames" || o.method == "deform"))
     throw UsageError(
         "--max-error bounds the methods whose vertices the skinned solver places (skinned, decoro, "
