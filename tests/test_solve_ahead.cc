@@ -68,18 +68,18 @@ TEST(SolveAhead, TheWorkersAnswersAreTheSerialSolvesAndLandInTheCache) {
   ASSERT_EQ(ahead.solved(), size_t(kEdges));
   for (int e = 0; e < kEdges; ++e) {
     ahead.settle(e);
-    const CollapseResult* got = cache.find(e, 2 * e, 2 * e + 1);
-    ASSERT_NE(got, nullptr) << "edge " << e;
+    CollapseResult got;
+    ASSERT_TRUE(cache.find(e, 2 * e, 2 * e + 1, got)) << "edge " << e;
     CollapseResult want;
     solve_collapse(problems[e], settings, serial, want);
-    EXPECT_EQ(got->position, want.position) << "edge " << e;
-    EXPECT_EQ(got->error, want.error);
-    EXPECT_EQ(got->weights, want.weights);
-    EXPECT_EQ(got->valid, want.valid);
+    EXPECT_EQ(got.position, want.position) << "edge " << e;
+    EXPECT_EQ(got.error, want.error);
+    EXPECT_EQ(got.weights, want.weights);
+    EXPECT_EQ(got.valid, want.valid);
   }
   // Answers are tied to the stamps they were solved at: a vertex that changed since has none.
   cache.touch(0);
-  EXPECT_EQ(cache.find(0, 0, 1), nullptr);
+  EXPECT_FALSE(cache.has(0, 0, 1));
   ahead.stop();
   EXPECT_GT(ahead.worker_stats().solves, 0u);
 }
@@ -99,9 +99,15 @@ TEST(SolveAhead, AJobTheWorkerHasNotStartedGoesBackToTheMeshThread) {
   }
   for (int e = 0; e < 4; ++e) {
     ahead.settle(e);  // cancels: the entry is the mesh thread's, and empty
-    EXPECT_EQ(cache.find(e, 2 * e, 2 * e + 1), nullptr);
-    cache.store(e, 2 * e, 2 * e + 1).error = 7.0;  // what the mesh thread then solves stays
+    EXPECT_FALSE(cache.has(e, 2 * e, 2 * e + 1));
+    CollapseResult mine;
+    mine.error = 7.0;
+    cache.store(e, 2 * e, 2 * e + 1, mine);  // what the mesh thread then solves stays
   }
-  for (int e = 0; e < 4; ++e) EXPECT_EQ(cache.find(e, 2 * e, 2 * e + 1)->error, 7.0);
+  for (int e = 0; e < 4; ++e) {
+    CollapseResult got;
+    ASSERT_TRUE(cache.find(e, 2 * e, 2 * e + 1, got));
+    EXPECT_EQ(got.error, 7.0);
+  }
   EXPECT_EQ(ahead.solved(), 0u);
 }

@@ -29,6 +29,8 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <stdexcept>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -122,6 +124,10 @@ public:
   void prepare() {
     checks_at_pop_ = checks_at_pop(mesh_);
     if (prepared_) return;
+    if (skeleton(mesh_).size() > EdgeCache::kMaxJoints)
+      throw std::length_error("the skinned solver handles skeletons of at most " +
+                              std::to_string(EdgeCache::kMaxJoints) + " joints; this one has " +
+                              std::to_string(skeleton(mesh_).size()));
     poses_.build();
     h_inf_ = poses_.influences();
     cache_.reset(mesh_.n_edges(), mesh_.n_vertices());
@@ -149,24 +155,25 @@ public:
   // ---- solving ------------------------------------------------------------------------------------------
 
   /// The optimal merged vertex for the edge of \p ci, from the cache when its endpoints did not change.
+  /// The reference is valid until the next call.
   const CollapseResult& solve(const CollapseInfo& ci) {
     ++stats_.requests;
     const int e = mesh_.edge_handle(ci.v0v1).idx();
     const int a = std::min(ci.v0.idx(), ci.v1.idx()), b = std::max(ci.v0.idx(), ci.v1.idx());
     if (ahead_) ahead_->settle(e);
-    if (const CollapseResult* hit = cache_.find(e, a, b)) {
+    if (cache_.find(e, a, b, answer_)) {
       ++stats_.cache_hits;
-      return *hit;
+      return answer_;
     }
     ++stats_.solves;
-    CollapseResult& out = cache_.store(e, a, b);
     if (model_) {
-      model_->solve_edge(VertexHandle(a), VertexHandle(b), out);
+      model_->solve_edge(VertexHandle(a), VertexHandle(b), answer_);
     } else {
       load_problem(VertexHandle(a), VertexHandle(b), problem_);
-      solve_collapse(problem_, settings_, weights_, out);
+      solve_collapse(problem_, settings_, weights_, answer_);
     }
-    return out;
+    cache_.store(e, a, b, answer_);
+    return answer_;
   }
 
   /** Solves every live edge not in the cache on \p threads threads, ahead of a driver's first pricing pass
@@ -180,13 +187,14 @@ public:
     for (auto eh : mesh_.edges()) {
       const auto h = mesh_.halfedge_handle(eh, 0);
       const int a = mesh_.from_vertex_handle(h).idx(), b = mesh_.to_vertex_handle(h).idx();
-      if (!cache_.find(eh.idx(), std::min(a, b), std::max(a, b))) todo.push_back(eh.idx());
+      if (!cache_.has(eh.idx(), std::min(a, b), std::max(a, b))) todo.push_back(eh.idx());
     }
     threads = std::max(1, std::min<int>(threads, static_cast<int>(todo.size() / 256) + 1));
     std::vector<WeightSolverStats> counts(threads);
     std::atomic<size_t> next{0};
     auto work = [&](int t) {
       EdgeProblem problem;
+      CollapseResult answer;
       WeightSolver weights;
       weights.set_regularization(weights_.regularization());
       weights.set_force_ceres(weights_.force_ceres());
@@ -197,7 +205,8 @@ public:
           const int a = mesh_.from_vertex_handle(h).idx(), b = mesh_.to_vertex_handle(h).idx();
           const VertexHandle va(std::min(a, b)), vb(std::max(a, b));
           load_problem(va, vb, problem);
-          solve_collapse(problem, settings_, weights, cache_.store(todo[i], va.idx(), vb.idx()));
+          solve_collapse(problem, settings_, weights, answer);
+          cache_.store(todo[i], va.idx(), vb.idx(), answer);
         }
       counts[t] = weights.stats();
     };
@@ -420,7 +429,8 @@ private:
   int threads_ = std::max(1u, std::thread::hardware_concurrency());
   bool pending_ = false;
   CollapseResult pending_result_;
-  EdgeProblem problem_;  // reused: no allocation per solve once grown
+  CollapseResult answer_;  // what solve() returns
+  EdgeProblem problem_;    // reused: no allocation per solve once grown
   mutable std::vector<RingFace> ring_faces_;
   WeightSolver weights_;
   WeightSolverStats batch_weights_;  // solve_all_edges()'s workers' counts

@@ -72,7 +72,8 @@ void SolveAhead::work() {
     if (!job.slot.compare_exchange_strong(s, kRunning, std::memory_order_acq_rel)) continue;
     uint32_t waiting = job.ticket << 2 | kWaiting;
     if (mark_[job.edge].compare_exchange_strong(waiting, job.ticket << 2 | kSolving, std::memory_order_acq_rel)) {
-      solve_collapse(job.problem, settings_, weights_, cache_.store_solved(job.edge, job.a, job.b, job.sa, job.sb));
+      solve_collapse(job.problem, settings_, weights_, answer_);
+      cache_.store_solved(job.edge, job.a, job.b, job.sa, job.sb, answer_);
       mark_[job.edge].store(job.ticket << 2 | kSolved, std::memory_order_release);
       solved_.fetch_add(1, std::memory_order_release);
     }

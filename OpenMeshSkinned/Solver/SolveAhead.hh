@@ -72,7 +72,8 @@ private:
   std::atomic<size_t> solved_{0};
   size_t reserved_ = 0;
   uint32_t tickets_ = 0;
-  WeightSolver weights_;  // the worker's
+  WeightSolver weights_;   // the worker's
+  CollapseResult answer_;  // the worker's, copied into the cache
   std::thread worker_;
 };
 
