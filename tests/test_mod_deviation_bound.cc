@@ -94,14 +94,16 @@ TEST(ModDeviationBound, NoVertexOfTheOriginalStraysBeyondTheLimitInAnyExamplePos
             << ", " << b.faces << " faces)\n";
 }
 
-TEST(ModDeviationBound, UnderDecimaterTTheBoundStillTellsTheTruth) {
-  // DecimaterT asks binary modules when it prices, so a later collapse nearby can make a verdict stale and
-  // the limit may slip; what bound() reports is still what the decimation did.
+TEST(ModDeviationBound, UnderDecimaterTStaleVerdictsAreJudgedAgainAndTheLimitHolds) {
+  // DecimaterT asks binary modules when it prices, so a later collapse nearby can make a verdict stale;
+  // the solver re-judges the stored collapses near each collapse with the module (without it, 0.5% became
+  // 1.29% here). What bound() reports is what the decimation did, and the limit holds.
   const Mesh original = omsk_test::load_character("X/Testwuson.X", 4);
   const double diagonal = bbox_diagonal(original);
   Mesh mesh = original;
   const Outcome r = decimate<OpenMesh::Decimater::DecimaterT<Mesh>>(mesh, 0.005 * diagonal);
   EXPECT_LT(r.faces, original.n_faces() / 2);
   EXPECT_LE(worst_vertex_distance(original, mesh), r.bound * (1 + 1e-9));
+  EXPECT_LE(r.bound, 0.005 * diagonal * (1 + 1e-9));
   std::cout << "DecimaterT: bound " << 100 * r.bound / diagonal << "% (limit 0.5), " << r.faces << " faces\n";
 }

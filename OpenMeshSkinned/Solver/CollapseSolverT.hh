@@ -68,6 +68,12 @@ public:
   virtual void contribute(SolverSettings& s) const = 0;
   /// A placing module's own cost model, replacing the skinned quadric; null for the others.
   virtual EdgeModelT<Mesh>* edge_model() { return nullptr; }
+  /// Once per collapse, when the solver has applied it (v1 placed and posed), before it re-judges the
+  /// verdicts DecimaterT stored near v1: a module keeping state per face updates it here.
+  virtual void collapse_applied(const OpenMesh::Decimater::CollapseInfoT<Mesh>&) {}
+  /// Whether this module would now refuse a collapse it accepted when DecimaterT priced it (asked for the
+  /// collapses stored near v1 after each collapse, with SolverSettings::recheck_stale; see StaleVerdictsT).
+  virtual bool now_refuses(const OpenMesh::Decimater::CollapseInfoT<Mesh>&) { return false; }
 };
 
 template <typename Mesh>
@@ -332,14 +338,21 @@ public:
           ahead_->submit();
         }
       }
+    for (auto* c : clients_) c->collapse_applied(ci);
     // Moved or not, v1 now holds v0's faces: verdicts around it may be stale. (After the stamps: the
     // re-checks must not reuse answers cached for v1 as it was.)
-    if (settings_.placement && settings_.fold_check && !checks_at_pop_)
+    if (settings_.placement && (settings_.fold_check || settings_.recheck_stale) && !checks_at_pop_)
       stats_.deferred += stale_.defer_around(v1, [this](const CollapseInfo& zc) {
-        Eigen::Vector3d rest;
-        Influences w;
-        placement_of(zc, rest, w);
-        return flips(zc, rest, w, settings_.fold_cos);
+        if (settings_.fold_check) {
+          Eigen::Vector3d rest;
+          Influences w;
+          placement_of(zc, rest, w);
+          if (flips(zc, rest, w, settings_.fold_cos)) return true;
+        }
+        if (settings_.recheck_stale)
+          for (auto* c : clients_)
+            if (c->now_refuses(zc)) return true;
+        return false;
       });
   }
 
