@@ -12,26 +12,11 @@ using omsk_test::Mesh;
 
 namespace {
 
-// A 3x3 vertex grid over [0,2]^2 in z = 0 with UV = position / 2 and normal +z, except that the right column
-// of faces is a separate chart: its UVs are shifted by (+10, 0), so the edges on x = 1 are a UV seam.
+// omsk_test::grid_with_uv_seam(), its border halfedges holding a UV no face owns.
 Mesh grid_with_seam() {
-  Mesh mesh;
-  request_skinned_attributes(mesh);
-  std::vector<Mesh::VertexHandle> v;
-  for (int i = 0; i < 3; ++i)
-    for (int k = 0; k < 3; ++k) v.push_back(mesh.add_vertex(Mesh::Point(k, i, 0)));
-  for (int i = 0; i < 2; ++i)
-    for (int k = 0; k < 2; ++k) {
-      const auto a = v[i * 3 + k], b = v[i * 3 + k + 1], c = v[(i + 1) * 3 + k], d = v[(i + 1) * 3 + k + 1];
-      for (auto fh : {mesh.add_face(a, b, d), mesh.add_face(a, d, c)})
-        for (auto h : mesh.fh_range(fh)) {
-          const auto p = mesh.point(mesh.to_vertex_handle(h));
-          mesh.set_texcoord2D(h, Mesh::TexCoord2D(p[0] / 2 + (k == 1 ? 10 : 0), p[1] / 2));
-          mesh.set_normal(h, Mesh::Normal(0, 0, 1));
-        }
-    }
+  Mesh mesh = omsk_test::grid_with_uv_seam();
   for (auto h : mesh.halfedges())
-    if (mesh.is_boundary(h)) mesh.set_texcoord2D(h, Mesh::TexCoord2D(-7, -7));  // owned by no face
+    if (mesh.is_boundary(h)) mesh.set_texcoord2D(h, Mesh::TexCoord2D(-7, -7));
   return mesh;
 }
 

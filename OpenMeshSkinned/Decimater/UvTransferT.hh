@@ -11,6 +11,7 @@
  */
 
 #include "OpenMeshSkinned/Mesh/ClosestPoint.hh"
+#include "OpenMeshSkinned/Mesh/Seams.hh"
 #include "OpenMeshSkinned/Skin/LinearBlendSkinning.hh"
 
 #include <cmath>
@@ -91,7 +92,7 @@ private:
     int v[3];
   };
 
-  static bool same(const Eigen::Vector2d& x, const Eigen::Vector2d& y) { return (x - y).norm() < 1e-6; }
+  static bool same(const Eigen::Vector2d& x, const Eigen::Vector2d& y) { return (x - y).norm() < kSeamUvTolerance; }
 
   // The chart of a corner whose other two vertices are b and c: the source faces that give b or c the
   // corner's UV, grown across edges whose two ends carry the same UVs on both sides (no seam).

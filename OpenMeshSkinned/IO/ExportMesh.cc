@@ -2,6 +2,7 @@
 
 #include "OpenMeshSkinned/IO/ExportGltf.hh"
 #include "OpenMeshSkinned/IO/IOError.hh"
+#include "OpenMeshSkinned/Mesh/Seams.hh"
 #include "OpenMeshSkinned/Skin/Morph.hh"
 #include "OpenMeshSkinned/Skin/SkinProperties.hh"
 
@@ -56,7 +57,7 @@ Eigen::Vector3d corner_normal(const SkinnedMesh& mesh, SkinnedMesh::HalfedgeHand
     if (mesh.is_boundary(h)) continue;
     const auto other = mesh.normal(h);
     const Eigen::Vector3d o(other[0], other[1], other[2]);
-    if (ref.norm() > 0.0 && o.norm() > 0.0 && o.dot(ref) < 0.5 * o.norm() * ref.norm()) continue;
+    if (ref.norm() > 0.0 && o.norm() > 0.0 && o.dot(ref) < kHardEdgeNormalCos * o.norm() * ref.norm()) continue;
     // The cross product is the face normal scaled by twice the area: area weighting without normalising
     // a degenerate face's zero vector (which gives NaN).
     const auto p0 = mesh.point(mesh.from_vertex_handle(h)), p1 = mesh.point(mesh.to_vertex_handle(h)),
