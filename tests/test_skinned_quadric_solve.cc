@@ -95,6 +95,24 @@ TEST(SkinnedQuadricSolve, FindsThePositionAndWeightThatFitEveryPose) {
               1e-12);
 }
 
+TEST(SkinnedQuadricSolve, ToleranceEndsTheAlternationWhenARoundStopsPaying) {
+  // Here each round cuts the error to about a quarter: a tolerance of 0.9 asks for more than that and
+  // stops after the second round; a tiny one runs on toward the optimum.
+  const EdgeProblem p = two_pose_corner(Eigen::Vector3d(0.2, -0.4, 1.0), 0.3, 1.0);
+  SolveSettings loose, tight;
+  loose.max_iterations = tight.max_iterations = 40;
+  loose.tolerance = 0.9;
+  tight.tolerance = 1e-9;
+  WeightSolver ws_loose, ws_tight;
+  CollapseResult r_loose, r_tight;
+  solve_collapse(p, loose, ws_loose, r_loose);
+  solve_collapse(p, tight, ws_tight, r_tight);
+  ASSERT_TRUE(r_loose.valid && r_tight.valid);
+  EXPECT_EQ(ws_loose.stats().solves, 2u);
+  EXPECT_GT(ws_tight.stats().solves, 5u);
+  EXPECT_LT(r_tight.error, 0.01 * r_loose.error);
+}
+
 TEST(SkinnedQuadricSolve, EnergyIsTheSumOfThePosedQuadrics) {
   const EdgeProblem p = two_pose_corner(Eigen::Vector3d::Zero(), 0.5, 2.0);
   WeightSolver::Vector a(2);

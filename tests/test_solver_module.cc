@@ -27,11 +27,13 @@ TEST(SolverModule, SettingsAreGatheredFromTheAttachedModules) {
   dec.module(hc).set_strategy(CapStrategy::Greedy);
   dec.module(hf).set_max_angle(60.0);
   dec.module(hq).set_max_iterations(3);
+  dec.module(hq).set_tolerance(0.05);
   const SolverSettings& s = dec.module(hq).solver().settings();
   EXPECT_TRUE(s.placement);
   EXPECT_EQ(s.max_influences, 2);
   EXPECT_EQ(s.strategy, CapStrategy::Greedy);
   EXPECT_EQ(s.max_iterations, 3);
+  EXPECT_EQ(s.tolerance, 0.05);
   EXPECT_TRUE(s.fold_check);
   EXPECT_NEAR(s.fold_cos, std::cos(M_PI / 3), 1e-12);
   EXPECT_EQ(&dec.module(hq).solver(), &dec.module(hc).solver()) << "one solver per mesh";

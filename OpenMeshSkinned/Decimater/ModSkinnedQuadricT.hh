@@ -56,6 +56,13 @@ public:
   }
   int max_iterations() const { return max_iterations_; }
 
+  /// The alternation stops when a round lowers the error by less than this fraction (default 1e-2).
+  void set_tolerance(double t) {
+    tolerance_ = std::max(0.0, t);
+    this->settings_changed();
+  }
+  double tolerance() const { return tolerance_; }
+
   /// Prices collapses by error / area (a mean squared distance) instead of the paper's energy. Default off.
   void set_error_per_area(bool on) {
     per_area_ = on;
@@ -77,12 +84,14 @@ protected:
   void contribute(SolverSettings& s) const override {
     s.placement = true;
     s.max_iterations = max_iterations_;
+    s.tolerance = tolerance_;
     s.error_per_area = per_area_;
   }
 
 private:
   double max_err_ = DBL_MAX;
   int max_iterations_ = SolveSettings{}.max_iterations;
+  double tolerance_ = SolveSettings{}.tolerance;
   bool per_area_ = false;
 };
 

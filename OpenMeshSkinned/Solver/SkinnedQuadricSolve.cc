@@ -52,7 +52,7 @@ double alternate(const EdgeProblem& p, const JointQuadrics& g, const SolveSettin
     if (p.support == 1) return JointQuadrics::energy(g.blend(a), v);
     g.weight_matrix(v, H);
     e = cap < p.support ? weights.solve_capped(H, p.start, cap, s.strategy, a) : weights.solve(H, p.start, a);
-    if (!(e < e_prev * (1.0 - 1e-4))) break;
+    if (!(e < e_prev * (1.0 - s.tolerance))) break;
     e_prev = e;
   }
   return JointQuadrics::energy(g.blend(a), v);
@@ -69,7 +69,7 @@ double alternate_fixed_support(const EdgeProblem& p, const JointQuadrics& g, con
     v = place(p, g, a);
     g.weight_matrix(v, H);
     const double e = weights.solve(H, p.start, a, &active);
-    if (!(e < e_prev * (1.0 - 1e-4))) break;
+    if (!(e < e_prev * (1.0 - s.tolerance))) break;
     e_prev = e;
   }
   return JointQuadrics::energy(g.blend(a), v);
