@@ -1,6 +1,9 @@
 #include "helpers.hh"
 
+#include <OpenMeshSkinned/Mesh/ClosestPoint.hh>
 #include <OpenMeshSkinned/Mesh/Procedural.hh>
+
+#include <random>
 
 using namespace OpenMeshSkinned;
 using omsk_test::Mesh;
@@ -61,5 +64,27 @@ TEST(SurfaceDistance, APreparedSurfaceMeasuresAgainstManyAsAFreshOneWould) {
     EXPECT_EQ(reused.hausdorff, fresh.hausdorff);
     EXPECT_GT(reused.rms, 0.0);
     EXPECT_LE(reused.hausdorff, z + 1e-9);
+  }
+}
+
+TEST(SurfaceDistance, AHintedSearchFindsTheSameNearestPoint) {
+  const Mesh mesh = make_bending_cylinder(16, 16);
+  const auto soup = posed_soup(mesh, example_poses(mesh)[1]);
+  const MeasuredSurface surface(soup, 0, 1, /*accelerate=*/false);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.5, 1.5);
+  std::uniform_int_distribution<int> any(-2, int(soup.triangles.size()) + 2);  // out-of-range hints too
+  for (int i = 0; i < 500; ++i) {
+    const Eigen::Vector3d q(u(rng), u(rng), u(rng) + 1.0);
+    int plain = -1, hinted = -1;
+    const double d = surface.distance(q, plain);
+    const double dh = surface.distance(q, hinted, any(rng));
+    EXPECT_NEAR(dh, d, 1e-12 * (1.0 + d));
+    ASSERT_GE(hinted, 0);
+    // Ties (a point nearest to an edge) may name either triangle: check the named one is as near.
+    const auto& t = soup.triangles[hinted];
+    const Eigen::Vector3d c[3] = {soup.points[t[0]], soup.points[t[1]], soup.points[t[2]]};
+    Eigen::Vector3d bary;
+    EXPECT_NEAR(std::sqrt(closest_barycentric(c, q, bary)), d, 1e-9);
   }
 }

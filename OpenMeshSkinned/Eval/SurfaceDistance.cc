@@ -95,6 +95,15 @@ double MeasuredSurface::distance(const Eigen::Vector3d& p, int& triangle) const 
   triangle = static_cast<int>(it - impl_->triangles.begin());
   return std::sqrt(CGAL::squared_distance(q, nearest));
 }
+double MeasuredSurface::distance(const Eigen::Vector3d& p, int& triangle, int hint) const {
+  if (!impl_->tree || hint < 0 || hint >= static_cast<int>(impl_->triangles.size())) return distance(p, triangle);
+  const Point q(p.x(), p.y(), p.z());
+  const Iterator h = impl_->triangles.begin() + hint;
+  const Point on = K().construct_projected_point_3_object()(*h, q);
+  const auto [nearest, it] = impl_->tree->closest_point_and_primitive(q, {on, h});
+  triangle = static_cast<int>(it - impl_->triangles.begin());
+  return std::sqrt(CGAL::squared_distance(q, nearest));
+}
 MeasuredSurface::MeasuredSurface(MeasuredSurface&&) noexcept = default;
 MeasuredSurface& MeasuredSurface::operator=(MeasuredSurface&&) noexcept = default;
 

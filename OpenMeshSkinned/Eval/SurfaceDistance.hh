@@ -44,6 +44,9 @@ public:
   double distance(const Eigen::Vector3d& p) const;
   /// As distance(), and the index (in the soup) of the triangle that nearest point lies on (-1 when none).
   double distance(const Eigen::Vector3d& p, int& triangle) const;
+  /// As above, starting from triangle \p hint (ignored when out of range): the same nearest point, found
+  /// faster when the hint lies near it (a query that moved a little since it last hit that triangle).
+  double distance(const Eigen::Vector3d& p, int& triangle, int hint) const;
 
   struct Impl;
   const Impl& impl() const { return *impl_; }

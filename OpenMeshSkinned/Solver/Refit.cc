@@ -105,6 +105,7 @@ struct Normal {
 
 // Where a point of the posed original lies on the posed LOD: a triangle and barycentric weights.
 struct Hit {
+  int id = -1;  // the triangle's index in the posed LOD's soup (the same every round: the topology is fixed)
   std::array<int, 3> tri;
   Eigen::Vector3d bary;
 };
@@ -208,13 +209,17 @@ RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const
     // so the answer does not depend on the thread count.
     for_each_pose(np, threads, [&](size_t j) {
       const TriangleSoup lsoup = posed_soup(lod, poses[j]);
-      const MeasuredSurface lsurf(lsoup, 0, 1);
-      hits[j].assign(samples.size(), Hit{{-1, -1, -1}, Eigen::Vector3d::Zero()});
+      // After the first round, last round's triangle starts each search (the LOD moved little since): the
+      // search tree's own start points are not needed.
+      const MeasuredSurface lsurf(lsoup, 0, 1, /*accelerate=*/round == 0);
+      hits[j].resize(samples.size(), Hit{-1, {-1, -1, -1}, Eigen::Vector3d::Zero()});
       for (size_t s = 0; s < samples.size(); ++s) {
-        int tri = -1;
-        lsurf.distance(sample_at[j][s], tri);
-        if (tri < 0) continue;
         Hit& h = hits[j][s];
+        int tri = -1;
+        lsurf.distance(sample_at[j][s], tri, h.id);
+        h.id = tri;
+        h.tri = {-1, -1, -1};
+        if (tri < 0) continue;
         h.tri = lsoup.triangles[tri];
         const Eigen::Vector3d corners[3] = {lsoup.points[h.tri[0]], lsoup.points[h.tri[1]], lsoup.points[h.tri[2]]};
         closest_barycentric(corners, sample_at[j][s], h.bary);
