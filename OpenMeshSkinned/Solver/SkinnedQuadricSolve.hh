@@ -45,8 +45,8 @@ struct SolveSettings {
   CapStrategy strategy = CapStrategy::Greedy;
   int max_iterations = 8;
   // A round that lowers the error by less than this fraction ends the alternation. 1e-2 halved the weight
-  // solves against 1e-4 (human: 3.1 -> 2.4 s) with the peer benchmark's held-out errors unchanged to
-  // within its noise (bench/README.md, "Alternation tolerance").
+  // solves against 1e-4 (the human on one thread, same session: 3.11 -> 2.61 s) with the peer benchmark's
+  // held-out errors unchanged to within its noise (bench/README.md, "Alternation tolerance").
   double tolerance = 1e-2;
 };
 
