@@ -1,10 +1,14 @@
 #pragma once
-// Runs a command line in a folder and collects its exit code and combined output.
+// Runs a command line in a folder and collects its exit code and combined output; reads the JSON it wrote.
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <stdexcept>
 #include <string>
 
 namespace omsk_test {
@@ -32,6 +36,13 @@ inline std::filesystem::path scratch_dir(const std::string& kind, const std::str
   std::filesystem::remove_all(d);
   std::filesystem::create_directories(d);
   return d;
+}
+
+/// The JSON file at \p path (a report the tool wrote); throws when it is missing or not JSON.
+inline nlohmann::json read_json(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot open " + path.string());
+  return nlohmann::json::parse(in);
 }
 
 }  // namespace omsk_test

@@ -27,8 +27,7 @@ TEST(Cli, LodChainWithReportOnARealCharacter) {
   const auto d = scratch("chain");
   const auto r = cli(wuson + " -o w.glb --lods 0.5,0.25,0.1 --max-influences 4 --poses 8 --report w.json --quiet", d);
   ASSERT_EQ(r.code, 0) << r.out;
-  nlohmann::json rep;
-  std::ifstream(d / "w.json") >> rep;
+  nlohmann::json rep = omsk_test::read_json(d / "w.json");
   ASSERT_EQ(rep["lods"].size(), 3u);
   size_t prev_faces = SIZE_MAX;
   double prev_rms = -1.0;
@@ -60,8 +59,7 @@ TEST(Cli, FacesTargetAndStaticMethod) {
   const auto d = scratch("faces");
   const auto r = cli(wuson + " -o s.gltf --faces 1000 --method static --quiet --report s.json", d);
   ASSERT_EQ(r.code, 0) << r.out;
-  nlohmann::json rep;
-  std::ifstream(d / "s.json") >> rep;
+  nlohmann::json rep = omsk_test::read_json(d / "s.json");
   EXPECT_NEAR(rep["lods"][0]["faces"].get<double>(), 1000.0, 2.0);
   EXPECT_TRUE(fs::exists(d / "s.gltf"));
 }
@@ -117,7 +115,7 @@ TEST(Cli, ThreadCountChangesNothingAndNoEvalSkipsOnlyTheError) {
                            ".json --quiet " + extra[i],
                        d);
     ASSERT_EQ(r.code, 0) << r.out;
-    std::ifstream(d / ("r" + std::to_string(i) + ".json")) >> rep[i];
+    rep[i] = omsk_test::read_json(d / ("r" + std::to_string(i) + ".json"));
     if (i == 2) {
       EXPECT_NE(r.out.find("             -              -"), std::string::npos) << r.out;
     }
@@ -150,7 +148,7 @@ TEST(Cli, AnimErrorThinsTheClipsOfEveryLodWithinItsBound) {
                            ".json --quiet" + (i ? " --anim-error 0.1" : ""),
                        d);
     ASSERT_EQ(r.code, 0) << r.out;
-    std::ifstream(d / ("r" + std::to_string(i) + ".json")) >> rep[i];
+    rep[i] = omsk_test::read_json(d / ("r" + std::to_string(i) + ".json"));
   }
   for (int l = 0; l < 2; ++l) {
     const auto &full = rep[0]["lods"][l], &thin = rep[1]["lods"][l];
@@ -173,8 +171,7 @@ TEST(Cli, MaxJointsWritesLodsWithTheReducedSkeletonThatStillPlayEveryClip) {
   const auto r =
       cli(wuson + " -o j.glb --lods 0.5,0.25 --max-joints 30,24 --anim-error 0.15 --report j.json --quiet", d);
   ASSERT_EQ(r.code, 0) << r.out;
-  nlohmann::json rep;
-  std::ifstream(d / "j.json") >> rep;
+  nlohmann::json rep = omsk_test::read_json(d / "j.json");
   for (int l = 0; l < 2; ++l) {
     const int budget = l == 0 ? 30 : 24;  // one per LOD, largest LOD first
     EXPECT_LE(rep["lods"][l]["joints"].get<int>(), budget);
@@ -202,7 +199,7 @@ TEST(Cli, TheFoldOverLimitIsRelaxedToComeCloserToTheTargetUnlessStrict) {
                            std::to_string(i) + ".json" + (i ? " --strict-fold" : ""),
                        d);
     ASSERT_EQ(r.code, 0) << r.out;
-    std::ifstream(d / ("f" + std::to_string(i) + ".json")) >> rep[i];
+    rep[i] = omsk_test::read_json(d / ("f" + std::to_string(i) + ".json"));
     if (i == 0) {
       EXPECT_NE(r.out.find("the fold-over limit was relaxed to"), std::string::npos) << r.out;
     }
@@ -218,8 +215,7 @@ TEST(Cli, MaxErrorBoundsEveryLodAndStopsWhereTheBoundWould) {
   const auto d = scratch("max_error");
   const auto r = cli(wuson + " -o b.glb --lods 0.5,0.1 --max-error 0.5 --no-eval --report b.json --quiet", d);
   ASSERT_EQ(r.code, 0) << r.out;
-  nlohmann::json rep;
-  std::ifstream(d / "b.json") >> rep;
+  nlohmann::json rep = omsk_test::read_json(d / "b.json");
   const auto &half = rep["lods"][0], &tenth = rep["lods"][1];
   // Half the triangles go within the bound; a tenth would need cuts further than 0.5% of the diagonal.
   EXPECT_TRUE(half["target_reached"].get<bool>());
@@ -234,7 +230,7 @@ TEST(Cli, MaxErrorBoundsEveryLodAndStopsWhereTheBoundWould) {
   // Without it, no bound is reported.
   const auto f = cli(wuson + " -o f.glb --ratio 0.5 --no-eval --no-refit --report f.json --quiet", d);
   ASSERT_EQ(f.code, 0) << f.out;
-  std::ifstream(d / "f.json") >> rep;
+  rep = omsk_test::read_json(d / "f.json");
   EXPECT_TRUE(rep["lods"][0]["deviation_bound"].is_null());
   // The frame methods place vertices themselves: a bound they would not keep is refused, not ignored.
   const auto m = cli(std::string("'") + OMSK_TEST_MODELS + "/MD2/faerie.md2' -o m.glb --max-error 1 --quiet", d);

@@ -69,8 +69,7 @@ TEST(CliFrames, AnMd2BecomesLodsThatPlayItsAnimation) {
     EXPECT_EQ(targets, 197u);
     EXPECT_TRUE(animated);
   }
-  nlohmann::json rep;
-  std::ifstream(d / "f.json") >> rep;
+  nlohmann::json rep = omsk_test::read_json(d / "f.json");
   EXPECT_EQ(rep["method"], "frames");
   for (const auto& l : rep["lods"]) {
     EXPECT_GT(l["heldout_rms"].get<double>(), 0.0);
@@ -84,8 +83,7 @@ TEST(CliFrames, LightSimplificationKeepsTheOutlineOfSheetsFoldedBackOnThemselves
   const auto d = scratch("md2light");
   const auto r = cli(faerie + " -o l.glb --faces 632 --report l.json", d);
   ASSERT_EQ(r.code, 0) << r.out;
-  nlohmann::json rep;
-  std::ifstream(d / "l.json") >> rep;
+  nlohmann::json rep = omsk_test::read_json(d / "l.json");
   const auto& l = rep["lods"][0];
   EXPECT_EQ(l["faces"].get<size_t>(), 632u);
   EXPECT_LT(l["heldout_hausdorff"].get<double>(), 0.8);  // 0.46 measured
@@ -111,8 +109,7 @@ TEST(CliFrames, SegmentWritesColouredPartsAndTheirFaces) {
   const auto r = cli(std::string("'") + OMSK_TEST_MODELS + "/MD2/sydney.md2' --segment s.glb", d);
   ASSERT_EQ(r.code, 0) << r.out;
   omsk_test::expect_valid_gltf((d / "s.glb").string());
-  nlohmann::json j;
-  std::ifstream(d / "s.json") >> j;
+  nlohmann::json j = omsk_test::read_json(d / "s.json");
   EXPECT_GT(j["parts"].get<int>(), 4);
   EXPECT_EQ(j["face_part"].size(), 679u);
   const auto m = load(d / "s.glb");
@@ -157,8 +154,7 @@ TEST(CliFrames, PoseSelectGaSaysSoAndStillJudgesOnHeldOutFrames) {
   const auto r = cli(faerie + " -o g.glb --ratio 0.5 --pose-select ga --poses 6 --report g.json", d);
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find("chosen by the key-frame GA"), std::string::npos) << r.out;
-  nlohmann::json rep;
-  std::ifstream(d / "g.json") >> rep;
+  nlohmann::json rep = omsk_test::read_json(d / "g.json");
   // No held-out frame is an example.
   const auto& l = rep["lods"][0];
   std::set<double> examples;
@@ -174,8 +170,7 @@ TEST(CliFrames, TheFrameMethodsHonourTheInfluenceCapOnSkinnedCharacters) {
                            method + " --max-influences 2 --report w.json --no-eval --quiet",
                        d);
     ASSERT_EQ(r.code, 0) << r.out;
-    nlohmann::json rep;
-    std::ifstream(d / "w.json") >> rep;
+    nlohmann::json rep = omsk_test::read_json(d / "w.json");
     for (const auto& l : rep["lods"]) EXPECT_LE(l["max_influences"].get<int>(), 2) << method;
   }
 }

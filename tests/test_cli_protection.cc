@@ -131,8 +131,7 @@ TEST(CliProtection, AnUnreachableTargetIsStated) {
       cli(std::string("'") + OMSK_TEST_MODELS + "/X/Testwuson.X' -o out.glb --faces 1 --report r.json --quiet", d);
   ASSERT_EQ(r.code, 0) << r.out;
   EXPECT_NE(r.out.find("target of 1 triangles not reached"), std::string::npos) << r.out;
-  nlohmann::json rep;
-  std::ifstream(d / "r.json") >> rep;
+  nlohmann::json rep = omsk_test::read_json(d / "r.json");
   EXPECT_EQ(rep["lods"][0]["target_faces"], 1);
   EXPECT_EQ(rep["lods"][0]["target_reached"], false);
   EXPECT_GT(rep["lods"][0]["faces"].get<int>(), 1);

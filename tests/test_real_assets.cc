@@ -150,8 +150,7 @@ TEST(RealCharacters, HeldOutErrorIsWhatTheSpecPosingShows) {
       scratch());
   ASSERT_EQ(r.code, 0) << r.out;
   omsk_test::expect_valid_gltf(out.string());
-  nlohmann::json report;
-  std::ifstream(rep) >> report;
+  nlohmann::json report = omsk_test::read_json(rep);
   const auto& lod = report["runs"].is_array() ? report["runs"][0]["lods"][0] : report["lods"][0];
   const double reported = lod["heldout_rms"].get<double>();
   const tinygltf::Model in = omsk_spec::load(file), res = omsk_spec::load(out.string());
