@@ -145,12 +145,19 @@ bool is_method(const std::string& name) {
   return std::any_of(methods().begin(), methods().end(), [&](const Method& m) { return name == m.name; });
 }
 
-std::vector<std::pair<Lod, Mesh>> build_chain(Mesh mesh, const std::vector<size_t>& targets,
-                                              const std::vector<double>& ratios, const Options& opt,
-                                              const std::string& method, const std::string& label) {
+std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vector<OpenMeshSkinned::Pose>& examples,
+                                              const std::vector<size_t>& targets, const std::vector<double>& ratios,
+                                              const Options& opt, const std::string& method, const std::string& label) {
   const auto it =
       std::find_if(table().begin(), table().end(), [&](const MethodModules& t) { return method == t.method.name; });
   if (it == table().end()) throw std::logic_error("unknown method " + method);
+  // OpenMesh's meshes have no move constructor (their kernels declare destructors): a "moved" mesh is
+  // copied, and on a large character each copy is ~55 MB at the decimation's peak. So the chain is sized
+  // up front and its last level is the working mesh, decimated in place; only earlier levels are copies.
+  std::vector<std::pair<Lod, Mesh>> out(targets.size());
+  Mesh& mesh = out.back().second;
+  mesh = input;
+  OpenMeshSkinned::example_poses(mesh) = examples;
   const size_t n_vertices_in = mesh.n_vertices();
   // The frame methods never change a skin, so the cap is applied once, up front: each vertex keeps its
   // heaviest --max-influences bones, renormalised (its trajectories are then those of the capped skin).
@@ -189,7 +196,6 @@ std::vector<std::pair<Lod, Mesh>> build_chain(Mesh mesh, const std::vector<size_
   Progress progress(!opt.quiet && isatty(2), n_vertices_in - targets.back() / 2, label);
   dec->set_observer(&progress);
 
-  std::vector<std::pair<Lod, Mesh>> out;
   const auto t0 = Clock::now();
   size_t collapses = 0;
   for (size_t i = 0; i < targets.size(); ++i) {
@@ -222,15 +228,16 @@ std::vector<std::pair<Lod, Mesh>> build_chain(Mesh mesh, const std::vector<size_
     lod.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     if (h.bound.is_valid()) lod.deviation_bound = 100.0 * dec->module(h.bound).bound() / diagonal;
     if (i + 1 == targets.size()) dec.reset();
-    // The last level is the working mesh itself; earlier ones are copies (with the deleted elements until
-    // garbage collection: the working mesh cannot be renumbered under the solver).
-    Mesh snap = i + 1 == targets.size() ? std::move(mesh) : mesh;
+    // Earlier levels are copies, with the deleted elements until garbage collection: the working mesh
+    // cannot be renumbered under the solver.
+    Mesh& snap = out[i].second;
+    if (i + 1 < targets.size()) snap = mesh;
     snap.garbage_collection();
     for (auto vh : snap.vertices()) snap.status(vh).set_locked(false);
     lod.faces = snap.n_faces();
     lod.vertices = snap.n_vertices();
     lod.max_influences = max_influences_of(snap);
-    out.emplace_back(lod, std::move(snap));
+    out[i].first = lod;
   }
   return out;
 }

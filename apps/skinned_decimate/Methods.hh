@@ -4,6 +4,8 @@
 
 #include "Options.hh"
 
+#include <OpenMeshSkinned/Skin/Skeleton.hh>
+
 #include <string>
 #include <utility>
 #include <vector>
@@ -41,11 +43,11 @@ struct Lod {
   std::string file;
 };
 
-/** Decimates \p mesh (taken by value: move it in when the caller is done with it) through every target in
- *  one pass (the multiresolution hierarchy: each level continues from the previous one) with \p method,
- *  and snapshots the mesh as it passes each target. */
-std::vector<std::pair<Lod, Mesh>> build_chain(Mesh mesh, const std::vector<size_t>& targets,
-                                              const std::vector<double>& ratios, const Options& opt,
-                                              const std::string& method, const std::string& label);
+/** Decimates a copy of \p input, posed by \p examples, through every target in one pass (the
+ *  multiresolution hierarchy: each level continues from the previous one) with \p method, and snapshots
+ *  the mesh as it passes each target. */
+std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vector<OpenMeshSkinned::Pose>& examples,
+                                              const std::vector<size_t>& targets, const std::vector<double>& ratios,
+                                              const Options& opt, const std::string& method, const std::string& label);
 
 }  // namespace skinned_decimate

@@ -225,13 +225,11 @@ json run_character(const Mesh& mesh, const std::string& name, const Options& opt
                    const std::string& output, OutputSet* outputs, std::vector<HtmlSection>* html = nullptr,
                    const std::string& section_title = "") {
   const Poses poses = choose_poses(mesh, name, opt);
-  Mesh work = mesh;
-  example_poses(work) = poses.examples;
   std::vector<double> ratios;
   std::vector<size_t> targets;
   choose_targets(mesh, opt, ratios, targets);
   const auto t0 = Clock::now();
-  auto chain = build_chain(std::move(work), targets, ratios, opt, method, name + " (" + method + ")");
+  auto chain = build_chain(mesh, poses.examples, targets, ratios, opt, method, name + " (" + method + ")");
   if (opt.refit)
     for (auto& [lod, lmesh] : chain) {
       const auto tr = Clock::now();
