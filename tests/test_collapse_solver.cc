@@ -123,6 +123,34 @@ TEST(CollapseSolver, ConstraintsHoldForEveryEdgeOfARealCharacter) {
   EXPECT_EQ(solver.stats().cache_hits, mesh.n_edges());
 }
 
+TEST(CollapseSolver, RaisingTheCapAfterPrepareGivesTheWiderAnswersAndCachesThem) {
+  // The cache's slots are sized for the cap at prepare(); raised later, the slots are widened, and every
+  // answer is the one a solver prepared with the higher cap gives.
+  Mesh mesh = omsk_test::load_character("X/Testwuson.X", 6);
+  SolverSettings narrow, wide;
+  narrow.max_influences = 2;
+  wide.max_influences = 6;
+  CollapseSolverT<Mesh> solver(mesh), fresh(mesh);
+  solver.set_settings(narrow);
+  solver.prepare();
+  for (auto heh : mesh.halfedges()) solver.solve(CI(mesh, heh));
+  solver.set_settings(wide);
+  fresh.set_settings(wide);
+  fresh.prepare();
+  const auto solves = solver.stats().solves, hits = solver.stats().cache_hits;
+  int wider = 0;
+  for (auto heh : mesh.halfedges()) {
+    const CollapseResult r = solver.solve(CI(mesh, heh));
+    const CollapseResult& f = fresh.solve(CI(mesh, heh));
+    EXPECT_EQ(r.weights, f.weights);
+    EXPECT_EQ(r.error, f.error);
+    wider += r.weights.size() > 2;
+  }
+  EXPECT_GT(wider, 0);
+  EXPECT_EQ(solver.stats().solves, solves + mesh.n_edges());
+  EXPECT_EQ(solver.stats().cache_hits, hits + mesh.n_edges());
+}
+
 TEST(CollapseSolver, CacheIsInvalidatedWhenAnEndpointChanges) {
   Mesh mesh = two_joint_sheet(6, 0.5);
   CollapseSolverT<Mesh> solver(mesh);

@@ -54,3 +54,26 @@ TEST(EdgeCache, AnEdgeSlotReusedForOtherEndpointsIsNotAHit) {
   cache.invalidate();
   EXPECT_FALSE(cache.has(0, 0, 1));
 }
+
+TEST(EdgeCache, AnAnswerWithMoreInfluencesThanASlotHoldsIsSolvedAgain) {
+  // Slots sized for the cap: an answer beyond it is not kept (never cut short), one within it is.
+  EdgeCache cache;
+  cache.reset(2, 4, 4);
+  EXPECT_EQ(cache.capacity(), 4);
+  CollapseResult wide, narrow, got;
+  for (int i = 0; i < 5; ++i) wide.weights.push(i, 0.2);
+  for (int i = 0; i < 4; ++i) narrow.weights.push(i, 0.25);
+  cache.store(0, 0, 1, wide);
+  EXPECT_FALSE(cache.find(0, 0, 1, got));
+  cache.store(1, 2, 3, narrow);
+  ASSERT_TRUE(cache.find(1, 2, 3, got));
+  EXPECT_EQ(got.weights, narrow.weights);
+  // Widened (the cap was raised): every answer is gone, the wide one now fits, the stamps go on.
+  cache.touch(2);
+  cache.set_capacity(8);
+  EXPECT_FALSE(cache.has(1, 2, 3));
+  cache.store(0, 0, 1, wide);
+  ASSERT_TRUE(cache.find(0, 0, 1, got));
+  EXPECT_EQ(got.weights, wide.weights);
+  EXPECT_EQ(cache.stamp(2), 1u);
+}

@@ -89,17 +89,24 @@ public:
   const SolverSettings& settings() const { return settings_; }
   /// Sets everything at once (a solver used without modules); attached modules overwrite it when they change.
   void set_settings(const SolverSettings& s) {
-    if (!s.same_answers(settings_)) invalidate_cache();
+    const bool same = s.same_answers(settings_);
     settings_ = s;
+    if (!same) invalidate_cache();
   }
   int max_influences() const { return settings_.max_influences; }
   /// Replaces the skinned quadric as the source of placements and errors (nullptr restores it).
   void set_edge_model(EdgeModelT<Mesh>* model) {
-    if (model != model_) invalidate_cache();
+    const bool same = model == model_;
     model_ = model;
+    if (!same) invalidate_cache();
   }
   /// Forgets every cached edge answer (a setting or a module's cost model changed).
-  void invalidate_cache() { cache_.invalidate(); }
+  void invalidate_cache() {
+    cache_.invalidate();
+    // The slots are resized at the next solve, not here: modules detaching one by one at the end of a
+    // run would otherwise widen them while everything else is still held.
+    resize_cache_ = prepared_ && cache_.capacity() != answer_capacity();
+  }
 
   void attach(SolverClientT<Mesh>* m) {
     clients_.push_back(m);
@@ -136,7 +143,8 @@ public:
                               std::to_string(skeleton(mesh_).size()));
     poses_.build();
     h_inf_ = poses_.influences();
-    cache_.reset(mesh_.n_edges(), mesh_.n_vertices());
+    cache_.reset(mesh_.n_edges(), mesh_.n_vertices(), answer_capacity());
+    resize_cache_ = false;
     uv_.prepare();
     stale_.prepare();
     prepared_ = true;
@@ -160,6 +168,16 @@ public:
 
   // ---- solving ------------------------------------------------------------------------------------------
 
+  /// The most influences an answer can have: the cap, unless a module's own cost model answers.
+  int answer_capacity() const { return model_ ? Influences::kCapacity : settings_.max_influences; }
+  /// Sizes the cache's slots for answer_capacity() after the settings changed; not while a worker solves
+  /// ahead into them (until then, answers too wide are solved again when asked).
+  void resize_cache() {
+    if (!resize_cache_ || ahead_) return;
+    cache_.set_capacity(answer_capacity());
+    resize_cache_ = false;
+  }
+
   /// The optimal merged vertex for the edge of \p ci, from the cache when its endpoints did not change.
   /// The reference is valid until the next call.
   const CollapseResult& solve(const CollapseInfo& ci) {
@@ -167,6 +185,7 @@ public:
     const int e = mesh_.edge_handle(ci.v0v1).idx();
     const int a = std::min(ci.v0.idx(), ci.v1.idx()), b = std::max(ci.v0.idx(), ci.v1.idx());
     if (ahead_) ahead_->settle(e);
+    resize_cache();
     if (cache_.find(e, a, b, answer_)) {
       ++stats_.cache_hits;
       return answer_;
@@ -188,6 +207,7 @@ public:
   void solve_all_edges(int threads) {
     if (!prepared_) return;
     solved_ahead_ = true;
+    resize_cache();
     if (model_ || !settings_.placement) return;
     std::vector<int> todo;
     for (auto eh : mesh_.edges()) {
@@ -435,6 +455,7 @@ private:
   MorphTransferT<Mesh> morph_;
   StaleVerdictsT<Mesh> stale_;
   EdgeCache cache_;
+  bool resize_cache_ = false;
   std::unique_ptr<SolveAhead> ahead_;  // after cache_: its worker stops before the cache it writes into goes
   bool prepared_ = false;
   bool checks_at_pop_ = false;

@@ -17,9 +17,27 @@ public:
   /// Joint indices are kept in 16 bits (a third of the cache's size went to padding and 32-bit joints).
   static constexpr int kMaxJoints = 65536;
 
-  void reset(size_t n_edges, size_t n_vertices) {
+  /** One slot per edge and a stamp per vertex, every slot empty. A slot holds at most \p capacity
+   *  influences: the most an answer can have (the weight cap's n, when the solver places vertices itself;
+   *  at 4 of 8 that is 14 MB less on a 240k-triangle mesh). A larger answer is not kept, so it is solved
+   *  again when asked. */
+  void reset(size_t n_edges, size_t n_vertices, int capacity = Influences::kCapacity) {
+    capacity_ = std::clamp(capacity, 1, Influences::kCapacity);
     entries_.assign(n_edges, Entry{});
+    weight_.assign(n_edges * capacity_, 0.0);
+    joint_.assign(n_edges * capacity_, 0);
     stamp_.assign(n_vertices, 0);
+  }
+  /// The most influences an answer may have to be kept.
+  int capacity() const { return capacity_; }
+  /// Forgets every answer and makes the slots hold \p capacity influences (the cap changed). The vertex
+  /// stamps are kept: they count the vertices' changes, which go on.
+  void set_capacity(int capacity) {
+    capacity_ = std::clamp(capacity, 1, Influences::kCapacity);
+    invalidate();
+    // New arrays rather than assign(), which would keep the larger ones' memory.
+    std::vector<double>(entries_.size() * capacity_, 0.0).swap(weight_);
+    std::vector<uint16_t>(entries_.size() * capacity_, 0).swap(joint_);
   }
   /// Forgets every answer (a setting changed).
   void invalidate() {
@@ -45,7 +63,8 @@ public:
     out.area = x.area;
     out.valid = x.valid;
     out.weights.clear();
-    for (int i = 0; i < x.size; ++i) out.weights.push(x.joint[i], x.weight[i]);
+    const size_t slot = size_t(e) * capacity_;
+    for (int i = 0; i < x.size; ++i) out.weights.push(joint_[slot + i], weight_[slot + i]);
     return true;
   }
   /// Keeps \p r as the answer for edge \p e between \p a < \p b.
@@ -55,14 +74,19 @@ public:
   /// stamps the mesh thread writes).
   void store_solved(int e, int a, int b, uint32_t sa, uint32_t sb, const CollapseResult& r) {
     Entry& x = entries_[e];
+    if (r.weights.size() > capacity_) {
+      x.filled = false;
+      return;
+    }
     x.position = r.position;
     x.error = r.error;
     x.area = r.area;
     x.valid = r.valid;
     x.size = static_cast<uint8_t>(r.weights.size());
+    const size_t slot = size_t(e) * capacity_;
     for (int i = 0; i < r.weights.size(); ++i) {
-      x.joint[i] = static_cast<uint16_t>(r.weights[i].joint);
-      x.weight[i] = r.weights[i].weight;
+      joint_[slot + i] = static_cast<uint16_t>(r.weights[i].joint);
+      weight_[slot + i] = r.weights[i].weight;
     }
     x.va = a;
     x.vb = b;
@@ -72,19 +96,20 @@ public:
   }
 
 private:
-  // A CollapseResult without its padding: 144 bytes instead of 208 (23 MB less on a 240k-triangle mesh).
-  // The weights stay doubles, so an answer read back is the answer solved.
+  // A CollapseResult without its padding, its influences in the slot arrays below (16-bit joints; the
+  // weights stay doubles, so an answer read back is the answer solved).
   struct Entry {
     Eigen::Vector3d position = Eigen::Vector3d::Zero();
     double error = 0.0, area = 0.0;
-    double weight[Influences::kCapacity] = {};
-    uint16_t joint[Influences::kCapacity] = {};
     int va = -1, vb = -1;
     uint32_t sa = 0, sb = 0;
     uint8_t size = 0;
     bool valid = false, filled = false;
   };
+  int capacity_ = Influences::kCapacity;
   std::vector<Entry> entries_;
+  std::vector<double> weight_;
+  std::vector<uint16_t> joint_;
   std::vector<uint32_t> stamp_;
 };
 
