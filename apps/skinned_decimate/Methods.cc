@@ -145,9 +145,17 @@ bool is_method(const std::string& name) {
   return std::any_of(methods().begin(), methods().end(), [&](const Method& m) { return name == m.name; });
 }
 
+void keep_as_reference_only(Mesh& mesh) {
+  // Requested by the traits and again by request_skinned_attributes(): released until gone.
+  while (mesh.has_halfedge_normals()) mesh.release_halfedge_normals();
+  while (mesh.has_halfedge_texcoords2D()) mesh.release_halfedge_texcoords2D();
+  while (mesh.has_face_normals()) mesh.release_face_normals();
+}
+
 std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vector<OpenMeshSkinned::Pose>& examples,
                                               const std::vector<size_t>& targets, const std::vector<double>& ratios,
-                                              const Options& opt, const std::string& method, const std::string& label) {
+                                              const Options& opt, const std::string& method, const std::string& label,
+                                              const std::function<void()>& copied) {
   const auto it =
       std::find_if(table().begin(), table().end(), [&](const MethodModules& t) { return method == t.method.name; });
   if (it == table().end()) throw std::logic_error("unknown method " + method);
@@ -158,6 +166,7 @@ std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vect
   Mesh& mesh = out.back().second;
   mesh = input;
   OpenMeshSkinned::example_poses(mesh) = examples;
+  if (copied) copied();
   const size_t n_vertices_in = mesh.n_vertices();
   // The frame methods never change a skin, so the cap is applied once, up front: each vertex keeps its
   // heaviest --max-influences bones, renormalised (its trajectories are then those of the capped skin).
@@ -234,6 +243,13 @@ std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vect
     if (i + 1 < targets.size()) snap = mesh;
     snap.garbage_collection();
     for (auto vh : snap.vertices()) snap.status(vh).set_locked(false);
+    // Garbage collection keeps the arrays' capacity (the full mesh's, 62 MB on the human): a copy holds
+    // only the level's size, and clear() frees the arrays before the copy is assigned back.
+    {
+      const Mesh compact = snap;
+      snap.clear();
+      snap = compact;
+    }
     lod.faces = snap.n_faces();
     lod.vertices = snap.n_vertices();
     lod.max_influences = max_influences_of(snap);

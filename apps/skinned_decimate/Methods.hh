@@ -6,6 +6,7 @@
 
 #include <OpenMeshSkinned/Skin/Skeleton.hh>
 
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -45,9 +46,13 @@ struct Lod {
 
 /** Decimates a copy of \p input, posed by \p examples, through every target in one pass (the
  *  multiresolution hierarchy: each level continues from the previous one) with \p method, and snapshots
- *  the mesh as it passes each target. */
+ *  the mesh as it passes each target. \p copied, if set, is called once the copy is made. */
 std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vector<OpenMeshSkinned::Pose>& examples,
                                               const std::vector<size_t>& targets, const std::vector<double>& ratios,
-                                              const Options& opt, const std::string& method, const std::string& label);
+                                              const Options& opt, const std::string& method, const std::string& label,
+                                              const std::function<void()>& copied = {});
+/** Releases what only an exported mesh needs (corner normals and UVs, face normals) from a mesh that is
+ *  from now on only the reference surface the LODs are fitted to and measured against. */
+void keep_as_reference_only(Mesh& mesh);
 
 }  // namespace skinned_decimate

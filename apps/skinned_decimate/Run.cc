@@ -220,16 +220,20 @@ void keep_bound_after_refit(const Mesh& original, Mesh& lmesh, std::vector<Pose>
 
 // Runs one character through one method: poses, targets, the chain, its error, the table, the files
 // (staged in \p outputs; none when it is null), the page's views (when \p html is not null: the original
-// first if the section is new). Returns the report entry.
+// first if the section is new). \p last_use is the input itself when nothing copies it after this run:
+// its appearance attributes are released once the working copy is made. Returns the report entry.
 json run_character(const Mesh& mesh, const std::string& name, const Options& opt, const std::string& method,
                    const std::string& output, OutputSet* outputs, std::vector<HtmlSection>* html = nullptr,
-                   const std::string& section_title = "") {
+                   const std::string& section_title = "", Mesh* last_use = nullptr) {
   const Poses poses = choose_poses(mesh, name, opt);
   std::vector<double> ratios;
   std::vector<size_t> targets;
   choose_targets(mesh, opt, ratios, targets);
   const auto t0 = Clock::now();
-  auto chain = build_chain(mesh, poses.examples, targets, ratios, opt, method, name + " (" + method + ")");
+  auto chain = build_chain(mesh, poses.examples, targets, ratios, opt, method, name + " (" + method + ")", [&] {
+    // Nothing copies the input after this run: from here on it is only the reference surface.
+    if (last_use && !html) keep_as_reference_only(*last_use);
+  });
   if (opt.refit)
     for (auto& [lod, lmesh] : chain) {
       const auto tr = Clock::now();
@@ -514,7 +518,8 @@ int run(const Options& opt) {
     print_comparison(runs);
     report = {{"input", opt.input}, {"runs", runs}};
   } else {
-    report = run_character(mesh, opt.input, o, o.method, opt.output, &outputs, page ? &sections : nullptr, title);
+    report =
+        run_character(mesh, opt.input, o, o.method, opt.output, &outputs, page ? &sections : nullptr, title, &mesh);
   }
   if (page) write_page(opt, "skinned-decimate: " + title, sections, outputs);
   report["import_seconds"] = import_s;
