@@ -21,6 +21,8 @@ TEST(PoseCache, PosedPositionsAreTheSkinnedOnesAndEachPoseHasItsQuadrics) {
       // A vertex lies on the planes of its own faces in every pose: its quadric is ~0 there.
       EXPECT_NEAR(cache.quadric(vh, j)(cache.posed(vh, j)), 0.0, 1e-9);
       EXPECT_EQ(cache.posed_point(to_eigen(mesh.point(vh)), mesh.property(h, vh), j), cache.posed(vh, j));
+      // Stored in floats for the fold-over check: within float rounding of the model's size.
+      EXPECT_LT((cache.posed_stored(vh.idx(), j) - posed[vh.idx()]).norm(), 1e-6);
     }
   }
 }
@@ -47,7 +49,9 @@ TEST(PoseCache, UpdateFollowsAMovedVertexAndMergeSumsQuadrics) {
   mesh.set_point(b, mesh.point(b) + Mesh::Point(0, 0, 1));
   cache.update(b);
   const auto h = influences_handle(mesh);
-  for (int j = 0; j < cache.n_poses(); ++j)
-    EXPECT_LT((cache.posed(b, j) - skin_point(to_eigen(mesh.point(b)), mesh.property(h, b), cache.pose(j))).norm(),
-              1e-12);
+  for (int j = 0; j < cache.n_poses(); ++j) {
+    const Eigen::Vector3d want = skin_point(to_eigen(mesh.point(b)), mesh.property(h, b), cache.pose(j));
+    EXPECT_LT((cache.posed(b, j) - want).norm(), 1e-12);
+    EXPECT_LT((cache.posed_stored(b.idx(), j) - want).norm(), 1e-6);
+  }
 }

@@ -157,7 +157,7 @@ private:
     return legal;
   }
 
-  const Eigen::Vector3d& posed(int v, int j) { return this->solver().posed(typename MeshT::VertexHandle(v), j); }
+  Eigen::Vector3d posed(int v, int j) { return this->solver().posed(typename MeshT::VertexHandle(v), j); }
 
   // Calls f once for each face around v0 or v1.
   template <typename F>

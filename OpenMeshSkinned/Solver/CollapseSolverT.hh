@@ -158,7 +158,8 @@ public:
 
   int n_poses() const { return poses_.n_poses(); }
   const Pose& pose(int j) const { return poses_.pose(j); }
-  const Eigen::Vector3d& posed(VertexHandle v, int j) const { return poses_.posed(v, j); }
+  /// Vertex \p v as it is, posed in example pose \p j.
+  Eigen::Vector3d posed(VertexHandle v, int j) const { return poses_.posed(v, j); }
   /// A rest position with a skin, posed in example pose \p j (as a merged vertex would be).
   Eigen::Vector3d posed_point(const Eigen::Vector3d& rest, const Influences& w, int j) const {
     return poses_.posed_point(rest, w, j);
@@ -270,7 +271,7 @@ public:
   bool flips(const CollapseInfo& ci, const Eigen::Vector3d& rest, const Influences& w, double min_cos) const {
     surviving_faces(mesh_, ci.v0, ci.v1, ring_faces_);
     return folds_in_any_pose(
-        ring_faces_, poses_.n_poses(), [this](int v, int j) -> const Eigen::Vector3d& { return poses_.posed(v, j); },
+        ring_faces_, poses_.n_poses(), [this](int v, int j) { return poses_.posed_stored(v, j); },
         [&](int j) { return poses_.posed_point(rest, w, j); }, min_cos);
   }
 
