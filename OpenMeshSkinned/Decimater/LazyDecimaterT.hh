@@ -190,7 +190,13 @@ private:
     for (Module* m : modules_)
       if (auto* b = dynamic_cast<BatchPricing*>(m)) b->price_all_edges(threads_);
     const size_t n_slots = by_edge_ ? mesh_.n_edges() : mesh_.n_halfedges();
-    heap_ = {};
+    {
+      // Room for every slot and the re-priced ones pushed on top, so that the heap does not grow by
+      // doubling (a third of its memory unused, and old and new arrays side by side while it grows).
+      std::vector<Candidate> storage;
+      storage.reserve(n_slots + n_slots / 4);
+      heap_ = std::priority_queue<Candidate>(std::less<Candidate>(), std::move(storage));
+    }
     stamp_.assign(mesh_.n_vertices(), 0);
     queued_.assign(n_slots, 0);
     last_key_.assign(n_slots, 0.0f);
