@@ -193,6 +193,7 @@ private:
     {
       // Room for every slot and the re-priced ones pushed on top, so that the heap does not grow by
       // doubling (a third of its memory unused, and old and new arrays side by side while it grows).
+      heap_ = {};  // the last run's, freed before the new one is reserved
       std::vector<Candidate> storage;
       storage.reserve(n_slots + n_slots / 4);
       heap_ = std::priority_queue<Candidate>(std::less<Candidate>(), std::move(storage));
