@@ -55,3 +55,17 @@ TEST(PoseCache, UpdateFollowsAMovedVertexAndMergeSumsQuadrics) {
     EXPECT_LT((cache.posed_stored(b.idx(), j) - want).norm(), 1e-6);
   }
 }
+
+TEST(PoseCache, PositionsKeptInDoublesAreTheComputedOnesAndFollowUpdate) {
+  // The deviation bound asks for them: read from the kept array, they must be what posed() computes.
+  Mesh mesh = make_bending_cylinder(8, 8);
+  PoseCacheT<Mesh> kept(mesh), computed(mesh);
+  kept.set_keep_exact(true);
+  kept.build();
+  computed.build();
+  const auto b = Mesh::VertexHandle(4);
+  mesh.set_point(b, mesh.point(b) + Mesh::Point(0.25, 0, 0));
+  kept.update(b);
+  for (auto vh : mesh.vertices())
+    for (int j = 0; j < kept.n_poses(); ++j) EXPECT_EQ(kept.posed(vh, j), computed.posed(vh, j));
+}

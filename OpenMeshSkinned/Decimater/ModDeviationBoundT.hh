@@ -44,7 +44,7 @@ class ModDeviationBoundT : public SolverModuleT<MeshT> {
 public:
   DECIMATING_MODULE(ModDeviationBoundT, MeshT, DeviationBound);
 
-  explicit ModDeviationBoundT(MeshT& mesh) : SolverModuleT<MeshT>(mesh, true) {}
+  explicit ModDeviationBoundT(MeshT& mesh) : SolverModuleT<MeshT>(mesh, true) { this->solver().keep_exact_posed(); }
 
   /// The limit, in mesh units, on any vertex of the original's distance to the LOD in any example pose.
   void set_max_deviation(double d) {

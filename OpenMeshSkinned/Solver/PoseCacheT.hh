@@ -5,7 +5,8 @@
  *
  *  The stored positions are floats (13 MB less on a 240k-triangle character in 9 poses). Only the
  *  fold-over check reads them, where a rounding of 10^-7 of the model's size turns no face that matters;
- *  the quadrics are built from positions in doubles, and posed() computes one in doubles.
+ *  the quadrics are built from positions in doubles, and posed() computes one in doubles, or reads it
+ *  when set_keep_exact() asked for them to be kept as well (the deviation bound reads them all the time).
  */
 
 #include "OpenMeshSkinned/Skin/LinearBlendSkinning.hh"
@@ -44,7 +45,13 @@ public:
         [this](VertexHandle v, int j) -> PoseQuadric& { return quadric(v, j); });
     posed_.resize(nv * P_);
     for (size_t i = 0; i < exact.size(); ++i) posed_[i] = exact[i].cast<float>();
+    if (keep_exact_)
+      exact_ = std::move(exact);
+    else
+      exact_.clear();
   }
+  /// Keep the posed positions in doubles too (from the next build()).
+  void set_keep_exact(bool on) { keep_exact_ = on; }
 
   int n_poses() const { return P_; }
   const Pose& pose(int j) const { return poses_[j]; }
@@ -52,6 +59,7 @@ public:
 
   /// Vertex \p v posed in pose \p j, in doubles (computed).
   Eigen::Vector3d posed(VertexHandle v, int j) const {
+    if (!exact_.empty()) return exact_[v.idx() * P_ + j];
     return skin_point(to_eigen(mesh_.point(v)), mesh_.property(h_inf_, v), poses_[j]);
   }
   /// The same position as stored, in floats (the fold-over check's).
@@ -68,7 +76,11 @@ public:
   void update(VertexHandle v) {
     const Eigen::Vector3d rest = to_eigen(mesh_.point(v));
     const Influences& w = mesh_.property(h_inf_, v);
-    for (int j = 0; j < P_; ++j) posed_[v.idx() * P_ + j] = skin_point(rest, w, poses_[j]).template cast<float>();
+    for (int j = 0; j < P_; ++j) {
+      const Eigen::Vector3d p = skin_point(rest, w, poses_[j]);
+      posed_[v.idx() * P_ + j] = p.template cast<float>();
+      if (!exact_.empty()) exact_[v.idx() * P_ + j] = p;
+    }
   }
 
   /// \p into now stands for \p from's faces too.
@@ -82,6 +94,8 @@ private:
   std::vector<Pose> poses_;
   int P_ = 0;
   std::vector<Eigen::Vector3f> posed_;
+  bool keep_exact_ = false;
+  std::vector<Eigen::Vector3d> exact_;  // empty unless keep_exact_
   std::vector<PoseQuadric> quadric_;
 };
 
