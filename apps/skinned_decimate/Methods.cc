@@ -160,7 +160,7 @@ std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vect
       std::find_if(table().begin(), table().end(), [&](const MethodModules& t) { return method == t.method.name; });
   if (it == table().end()) throw std::logic_error("unknown method " + method);
   // OpenMesh's meshes have no move constructor (their kernels declare destructors): a "moved" mesh is
-  // copied, and on a large character each copy is ~55 MB at the decimation's peak. So the chain is sized
+  // copied, and on a large character each copy is ~62 MB at the decimation's peak. So the chain is sized
   // up front and its last level is the working mesh, decimated in place; only earlier levels are copies.
   std::vector<std::pair<Lod, Mesh>> out(targets.size());
   Mesh& mesh = out.back().second;
