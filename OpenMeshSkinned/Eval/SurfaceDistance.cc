@@ -87,20 +87,17 @@ double MeasuredSurface::distance(const Eigen::Vector3d& p) const {
   return std::sqrt(impl_->tree->squared_distance(Point(p.x(), p.y(), p.z())));
 }
 
-double MeasuredSurface::distance(const Eigen::Vector3d& p, int& triangle) const {
+double MeasuredSurface::distance(const Eigen::Vector3d& p, int& triangle) const { return distance(p, triangle, -1); }
+
+double MeasuredSurface::distance(const Eigen::Vector3d& p, int& triangle, int hint) const {
   triangle = -1;
   if (!impl_->tree) return HUGE_VAL;
   const Point q(p.x(), p.y(), p.z());
-  const auto [nearest, it] = impl_->tree->closest_point_and_primitive(q);
-  triangle = static_cast<int>(it - impl_->triangles.begin());
-  return std::sqrt(CGAL::squared_distance(q, nearest));
-}
-double MeasuredSurface::distance(const Eigen::Vector3d& p, int& triangle, int hint) const {
-  if (!impl_->tree || hint < 0 || hint >= static_cast<int>(impl_->triangles.size())) return distance(p, triangle);
-  const Point q(p.x(), p.y(), p.z());
-  const Iterator h = impl_->triangles.begin() + hint;
-  const Point on = K().construct_projected_point_3_object()(*h, q);
-  const auto [nearest, it] = impl_->tree->closest_point_and_primitive(q, {on, h});
+  const bool hinted = hint >= 0 && hint < static_cast<int>(impl_->triangles.size());
+  const Iterator h = impl_->triangles.begin() + (hinted ? hint : 0);
+  const auto [nearest, it] =
+      hinted ? impl_->tree->closest_point_and_primitive(q, {K().construct_projected_point_3_object()(*h, q), h})
+             : impl_->tree->closest_point_and_primitive(q);
   triangle = static_cast<int>(it - impl_->triangles.begin());
   return std::sqrt(CGAL::squared_distance(q, nearest));
 }

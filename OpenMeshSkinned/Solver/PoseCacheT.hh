@@ -33,22 +33,15 @@ public:
     if (poses_.empty()) poses_.push_back(Pose::identity(skeleton(mesh_).size()));
     P_ = static_cast<int>(poses_.size());
     const size_t nv = mesh_.n_vertices();
-    std::vector<Eigen::Vector3d> exact(nv * P_);
-    for (auto vh : mesh_.vertices()) {
-      const Eigen::Vector3d rest = to_eigen(mesh_.point(vh));
-      const Influences& w = mesh_.property(h_inf_, vh);
-      for (int j = 0; j < P_; ++j) exact[vh.idx() * P_ + j] = skin_point(rest, w, poses_[j]);
-    }
+    // update() fills the doubles while exact_ holds any: kept only when asked for, after the quadrics.
+    posed_.assign(nv * P_, Eigen::Vector3f::Zero());
+    exact_.assign(nv * P_, Eigen::Vector3d::Zero());
+    for (auto vh : mesh_.vertices()) update(vh);
     quadric_.assign(nv * P_, PoseQuadric{});
     accumulate_quadrics(
-        mesh_, P_, [&](VertexHandle v, int j) -> const Eigen::Vector3d& { return exact[v.idx() * P_ + j]; },
+        mesh_, P_, [this](VertexHandle v, int j) -> const Eigen::Vector3d& { return exact_[v.idx() * P_ + j]; },
         [this](VertexHandle v, int j) -> PoseQuadric& { return quadric(v, j); });
-    posed_.resize(nv * P_);
-    for (size_t i = 0; i < exact.size(); ++i) posed_[i] = exact[i].cast<float>();
-    if (keep_exact_)
-      exact_ = std::move(exact);
-    else
-      exact_.clear();
+    if (!keep_exact_) std::vector<Eigen::Vector3d>().swap(exact_);
   }
   /// Keep the posed positions in doubles too (from the next build()).
   void set_keep_exact(bool on) { keep_exact_ = on; }
