@@ -158,6 +158,7 @@ struct Modules {
   bool fold = true;
   int max_influences = 4;
   double max_angle = 90.0;
+  bool fold_fallback = false;  // ModSkinnedFoldOverT::set_fallback_placement
 };
 
 /// The three skinned modules added to \p dec as the tool adds them (cap 4, fold-over at 90 degrees).
@@ -183,6 +184,7 @@ inline void expect_same_mesh(const Mesh& a, const Mesh& b) {
 
 struct RunResult {
   size_t faces_before = 0, faces_after = 0, collapses = 0, flipped = 0, forced = 0, fallbacks = 0;
+  size_t fold_fallbacks = 0;  // collapses made off their folding solved placement (Modules::fold_fallback)
 };
 
 /** Decimates \p mesh to \p ratio of its faces with the chosen modules and a FlipWatcher after them, driven
@@ -201,6 +203,7 @@ RunResult decimate(Mesh& mesh, double ratio, const Modules& m = {}) {
   dec.add(hw);
   if (m.cap) dec.module(hc).set_max_influences(m.max_influences);
   if (m.fold) dec.module(hf).set_max_angle(m.max_angle);
+  if (m.fold) dec.module(hf).set_fallback_placement(m.fold_fallback);
   dec.module(hw).max_angle_deg = m.max_angle;
   EXPECT_TRUE(dec.initialize());
   RunResult r;
@@ -211,6 +214,7 @@ RunResult decimate(Mesh& mesh, double ratio, const Modules& m = {}) {
   if (m.quadric) {
     r.forced = dec.module(hq).solver().stats().forced_flips;
     r.fallbacks = dec.module(hq).solver().stats().placement_fallbacks;
+    r.fold_fallbacks = dec.module(hq).solver().stats().fold_fallbacks;
   }
   mesh.garbage_collection();
   r.faces_after = mesh.n_faces();

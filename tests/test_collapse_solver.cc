@@ -151,6 +151,57 @@ TEST(CollapseSolver, RaisingTheCapAfterPrepareGivesTheWiderAnswersAndCachesThem)
   EXPECT_EQ(solver.stats().cache_hits, hits + mesh.n_edges());
 }
 
+TEST(CollapseSolver, TheErrorAtAPlacementIsTheSolvesOwnAndAFallbackIsTheCheapestThatFoldsNothing) {
+  Mesh mesh = omsk_test::load_character("X/Testwuson.X", 6);
+  CollapseSolverT<Mesh> solver(mesh);
+  SolverSettings settings;
+  settings.placement = true;
+  settings.fold_check = true;
+  solver.set_settings(settings);
+  solver.prepare();
+  const double min_cos = std::cos(20.0 * M_PI / 180.0);
+  const auto h = influences_handle(mesh);
+  int folding = 0, chosen = 0;
+  for (auto heh : mesh.halfedges()) {
+    const CI ci(mesh, heh);
+    if (!mesh.is_collapse_ok(heh)) continue;
+    const CollapseResult solved = solver.solve(ci);
+    ASSERT_TRUE(solved.valid);
+    // The kernel sums the poses out in joint space; error_at poses the vertex pose by pose.
+    EXPECT_NEAR(solver.error_at(ci, solved.position, solved.weights), solved.error, 1e-9 + 1e-6 * solved.error);
+    if (!solver.flips(ci, solved.position, solved.weights, min_cos)) continue;
+    ++folding;
+    if (!solver.choose_fallback_placement(ci, min_cos)) {
+      EXPECT_EQ(&solver.placement(ci), &solver.solve(ci)) << "nothing chosen: the solved answer stands";
+      continue;
+    }
+    ++chosen;
+    const CollapseResult r = solver.placement(ci);
+    EXPECT_FALSE(solver.flips(ci, r.position, r.weights, min_cos));
+    EXPECT_LE(r.weights.size(), settings.max_influences);
+    EXPECT_NEAR(r.weights.sum(), 1.0, 1e-9);
+    EXPECT_DOUBLE_EQ(r.error, solver.error_at(ci, r.position, r.weights));
+    EXPECT_GE(r.error, solved.error * (1.0 - 1e-6)) << "the solve's own placement is the cheapest";
+    // No other placement of the five that folds nothing is cheaper.
+    const Eigen::Vector3d p0 = to_eigen(mesh.point(ci.v0)), p1 = to_eigen(mesh.point(ci.v1));
+    const std::pair<Eigen::Vector3d, Influences> others[] = {{p1, solved.weights},
+                                                             {0.5 * (p0 + p1), solved.weights},
+                                                             {p0, solved.weights},
+                                                             {p1, mesh.property(h, ci.v1)},
+                                                             {p0, mesh.property(h, ci.v0)}};
+    for (const auto& [p, w] : others) {
+      if (w.size() <= settings.max_influences && !solver.flips(ci, p, w, min_cos)) {
+        EXPECT_LE(r.error, solver.error_at(ci, p, w) * (1.0 + 1e-12));
+      }
+    }
+    // Chosen for this collapse only: pricing another forgets it.
+    solver.begin_pricing(CI(mesh, mesh.opposite_halfedge_handle(heh)));
+    EXPECT_EQ(&solver.placement(ci), &solver.solve(ci));
+  }
+  EXPECT_GT(folding, 10);
+  EXPECT_GT(chosen, 0);
+}
+
 TEST(CollapseSolver, CacheIsInvalidatedWhenAnEndpointChanges) {
   Mesh mesh = two_joint_sheet(6, 0.5);
   CollapseSolverT<Mesh> solver(mesh);

@@ -202,3 +202,26 @@ TEST(LazyDecimater, InitializeNeedsExactlyOnePriorityModuleAndTheMarkIsRemovedAf
   }
   EXPECT_FALSE(checks_at_pop(mesh));
 }
+
+TEST(LazyDecimater, ACandidateAcceptedAtADearerPlacementIsQueuedAgain) {
+  // With the fold check's fallback placements a candidate priced at its solved placement may be accepted
+  // at a dearer one: the driver asks the priority module again and queues it behind cheaper candidates.
+  // Without them the price cannot change at the checks, and nothing is queued again.
+  for (bool fallback : {false, true}) {
+    Mesh mesh = omsk_test::load_character("X/Testwuson.X", 8);
+    Lazy dec(mesh);
+    omsk_test::SkinnedModules<Lazy> m(dec);
+    dec.module(m.fold).set_max_angle(20.0);
+    dec.module(m.fold).set_fallback_placement(fallback);
+    ASSERT_TRUE(dec.initialize());
+    dec.decimate_to_faces(0, mesh.n_faces() / 100);
+    const size_t fold_fallbacks = dec.module(m.quadric).solver().stats().fold_fallbacks;
+    if (fallback) {
+      EXPECT_GT(dec.stats().requeued, 0u);
+      EXPECT_GT(fold_fallbacks, 0u);
+    } else {
+      EXPECT_EQ(dec.stats().requeued, 0u);
+      EXPECT_EQ(fold_fallbacks, 0u);
+    }
+  }
+}

@@ -1,5 +1,6 @@
 #include "helpers.hh"
 
+#include <OpenMeshSkinned/Decimater/LazyDecimaterT.hh>
 #include <OpenMeshSkinned/Mesh/Procedural.hh>
 
 #include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
@@ -131,4 +132,41 @@ TEST(ModSkinnedFoldOver, WorksWithoutPlacementAtV1) {
   dec.decimate_to_faces(0, mesh.n_faces() / 5);
   EXPECT_GT(dec.module(hw).collapses, 0u);
   EXPECT_EQ(dec.module(hw).flipped, 0u);
+}
+
+TEST(ModSkinnedFoldOver, FallbackPlacementsGoFurtherAndStillFoldNothing) {
+  // At 20 degrees Testwuson's decimation stops far above 1%: many collapses fold at their solved placement
+  // and wait. Allowed the midpoint or an endpoint, under either driver, it goes further, and still no face
+  // turns by more than 20 degrees in any pose.
+  for (bool lazy : {false, true}) {
+    SCOPED_TRACE(lazy ? "LazyDecimaterT" : "DecimaterT");
+    auto run = [&](bool fallback, Mesh& mesh) {
+      omsk_test::Modules mods;
+      mods.max_angle = 20.0;
+      mods.fold_fallback = fallback;
+      return lazy ? omsk_test::decimate<LazyDecimaterT<Mesh>>(mesh, 0.01, mods) : omsk_test::decimate(mesh, 0.01, mods);
+    };
+    Mesh waiting = omsk_test::load_character("X/Testwuson.X", 8), placed = waiting;
+    const auto a = run(false, waiting), b = run(true, placed);
+    EXPECT_EQ(a.fold_fallbacks, 0u);
+    EXPECT_GT(b.fold_fallbacks, 0u);
+    EXPECT_LT(b.faces_after, a.faces_after * 9 / 10);
+    EXPECT_EQ(b.flipped, 0u);
+    EXPECT_EQ(b.forced, 0u);
+    omsk_test::expect_valid_skin(placed, 4);
+  }
+}
+
+TEST(ModSkinnedFoldOver, NoFallbackHelpsWhenEveryPlacementTurnsAFace) {
+  Mesh mesh = rigid_sphere(3);
+  LazyDecimaterT<Mesh> dec(mesh);
+  ModSkinnedQuadricT<Mesh>::Handle hq;
+  ModSkinnedFoldOverT<Mesh>::Handle hf;
+  dec.add(hq);
+  dec.add(hf);
+  dec.module(hf).set_max_angle(1e-4);
+  dec.module(hf).set_fallback_placement(true);
+  ASSERT_TRUE(dec.initialize());
+  EXPECT_EQ(dec.decimate_to_faces(0, mesh.n_faces() / 2), 0u);
+  EXPECT_EQ(dec.module(hq).solver().stats().fold_fallbacks, 0u);
 }

@@ -65,4 +65,14 @@ public:
   virtual bool prices_edges() const { return false; }
 };
 
+/** A priority module whose price of a collapse may change once the binary modules have accepted it: the
+ *  fold-over check may have moved the merged vertex off its solved placement, to one that folds nothing
+ *  (ModSkinnedFoldOverT::set_fallback_placement). A driver that asks binary modules at pop time then asks
+ *  the priority module again, and queues the candidate again if it is no longer the cheapest. */
+class PriceAfterChecks {
+public:
+  virtual ~PriceAfterChecks() = default;
+  virtual bool prices_after_checks() const { return false; }
+};
+
 }  // namespace OpenMeshSkinned

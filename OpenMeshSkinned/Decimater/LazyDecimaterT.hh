@@ -15,9 +15,10 @@
 namespace OpenMeshSkinned {
 
 struct LazyDecimaterStats {
-  size_t priced = 0;   ///< priority module calls
-  size_t stale = 0;    ///< popped candidates whose neighbourhood had changed, re-priced and pushed back
-  size_t refused = 0;  ///< popped candidates a binary module or the topology refused
+  size_t priced = 0;    ///< priority module calls
+  size_t stale = 0;     ///< popped candidates whose neighbourhood had changed, re-priced and pushed back
+  size_t refused = 0;   ///< popped candidates a binary module or the topology refused
+  size_t requeued = 0;  ///< accepted candidates queued again: the binary modules' verdict raised their price
   size_t collapses = 0;
 };
 
@@ -198,6 +199,8 @@ private:
       storage.reserve(n_slots + n_slots / 4);
       heap_ = std::priority_queue<Candidate>(std::less<Candidate>(), std::move(storage));
     }
+    const auto* after = dynamic_cast<PriceAfterChecks*>(priority_);
+    const bool price_after_checks = after && after->prices_after_checks();
     stamp_.assign(mesh_.n_vertices(), 0);
     queued_.assign(n_slots, 0);
     last_key_.assign(n_slots, 0.0f);
@@ -224,6 +227,20 @@ private:
         continue;
       }
       CollapseInfo ci(mesh_, h);
+      if (price_after_checks) {
+        const float key = priority_->collapse_priority(ci);
+        if (key < 0.0f) {
+          ++stats_.refused;
+          continue;
+        }
+        if (key > c.key && !heap_.empty() && key > heap_.top().key) {
+          ++stats_.requeued;
+          heap_.push({key, c.slot, c.stamp});
+          queued_[c.slot] = 1;
+          last_key_[c.slot] = key;
+          continue;
+        }
+      }
       --nv;
       nf -= mesh_.is_boundary(ci.v0v1) || mesh_.is_boundary(ci.v1v0) ? 1 : 2;
       this->preprocess_collapse(ci);

@@ -47,6 +47,17 @@ public:
   }
   double max_angle() const { return max_angle_deg_; }
 
+  /** When the solved placement of a collapse would fold, allow the collapse at the cheapest placement that
+   *  folds nothing instead: the midpoint or an endpoint, with the solved skin or the endpoint's own. The
+   *  collapse is then priced at that placement (LazyDecimaterT queues it again if that makes it no longer
+   *  the cheapest). Off by default: such a collapse waits until its neighbourhood changes. Only with the
+   *  skinned quadric's placement (a baseline's own cost model cannot price another placement). */
+  void set_fallback_placement(bool on) {
+    fallback_ = on;
+    this->settings_changed();
+  }
+  bool fallback_placement() const { return fallback_; }
+
   void set_error_tolerance_factor(double factor) override {
     if (factor >= 0.0 && factor <= 1.0) {
       Base::error_tolerance_factor_ = factor;
@@ -57,16 +68,21 @@ public:
 protected:
   float price(const CollapseInfo& ci) override {
     // Not the cheapest legal collapse from v0 anyway: the decimater will not pick it, skip the check.
-    if (this->solver().cannot_win(ci)) return float(Base::LEGAL_COLLAPSE);
+    auto& solver = this->solver();
+    if (solver.cannot_win(ci)) return float(Base::LEGAL_COLLAPSE);
+    solver.forget_chosen_placement();
     Eigen::Vector3d rest;
     Influences w;
-    this->solver().placement_of(ci, rest, w);
-    return this->solver().flips(ci, rest, w, min_cos_) ? float(Base::ILLEGAL_COLLAPSE) : float(Base::LEGAL_COLLAPSE);
+    solver.placement_of(ci, rest, w);
+    if (!solver.flips(ci, rest, w, min_cos_)) return float(Base::LEGAL_COLLAPSE);
+    return fallback_ && solver.choose_fallback_placement(ci, min_cos_) ? float(Base::LEGAL_COLLAPSE)
+                                                                       : float(Base::ILLEGAL_COLLAPSE);
   }
   void contribute(SolverSettings& s) const override {
     // With several fold-over modules the strictest wins.
     s.fold_cos = s.fold_check ? std::max(s.fold_cos, min_cos_) : min_cos_;
     s.fold_check = true;
+    s.fold_fallback = s.fold_fallback || fallback_;
   }
 
 private:
@@ -77,6 +93,7 @@ private:
 
   double max_angle_deg_ = 90.0;
   double min_cos_ = 0.0;
+  bool fallback_ = false;
 };
 
 }  // namespace OpenMeshSkinned

@@ -74,7 +74,8 @@ public:
 
 protected:
   float price(const CollapseInfo& ci) override {
-    const CollapseResult& r = this->solver().solve(ci);
+    // The placement: a fold-over check that asked first may have moved it off the solved one.
+    const CollapseResult& r = this->solver().placement(ci);
     if (!r.valid) return float(Base::ILLEGAL_COLLAPSE);
     const double e = this->solver().settings().priority(r);
     if (e > max_err_ * Base::error_tolerance_factor_) return float(Base::ILLEGAL_COLLAPSE);

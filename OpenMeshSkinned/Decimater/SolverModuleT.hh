@@ -30,7 +30,8 @@ class SolverModuleT : public OpenMesh::Decimater::ModBaseT<MeshT>,
                       protected SolverClientT<MeshT>,
                       public BatchPricing,
                       public EndpointPriority,
-                      public EdgePriority {
+                      public EdgePriority,
+                      public PriceAfterChecks {
   using ModBase = OpenMesh::Decimater::ModBaseT<MeshT>;
 
 public:
@@ -59,6 +60,7 @@ public:
     solver_->start_solving_ahead(threads);
   }
   void end_of_run() override { solver_->stop_solving_ahead(); }
+  bool prices_after_checks() const override { return solver_->settings().fold_fallback; }
 
   /// The shared solver: settings and counters (solves, cache hits, Ceres calls, forced flips).
   CollapseSolverT<MeshT>& solver() { return *solver_; }

@@ -26,8 +26,10 @@
 #include <OpenMesh/Tools/Decimater/CollapseInfoT.hh>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -44,6 +46,7 @@ struct CollapseSolverStats {
   size_t placement_fallbacks = 0;  ///< collapses whose solved position was stale and was replaced
   size_t forced_flips = 0;         ///< collapses DecimaterT made although every placement flips a face
   size_t deferred = 0;             ///< vertices held back until DecimaterT re-asked them (stale verdicts)
+  size_t fold_fallbacks = 0;       ///< collapses made at a fallback placement: the solved one folded (fold_fallback)
   WeightSolverStats weights;
 };
 
@@ -281,7 +284,7 @@ public:
   /// Where and with which skin the merged vertex will be if \p ci is collapsed now.
   void placement_of(const CollapseInfo& ci, Eigen::Vector3d& rest, Influences& w) {
     if (settings_.placement) {
-      const CollapseResult& r = solve(ci);
+      const CollapseResult& r = placement(ci);
       if (r.valid) {
         rest = r.position;
         w = r.weights;
@@ -292,6 +295,51 @@ public:
     w = mesh_.property(h_inf_, ci.v1);
   }
 
+  /// The answer a collapse of \p ci will use: the fallback chosen for it (choose_fallback_placement), or the
+  /// solved one.
+  const CollapseResult& placement(const CollapseInfo& ci) { return chosen_for(ci) ? chosen_ : solve(ci); }
+
+  /** Chooses, for a collapse whose solved placement folds, the cheapest placement that turns no face by
+   *  more than acos(\p min_cos) in any pose: the midpoint or an endpoint with the solved skin, or an
+   *  endpoint with its own. The collapse of \p ci then uses it, until another collapse is priced or made.
+   *  False when every one folds, or when a module's own cost model places vertices (it cannot price
+   *  another placement). */
+  bool choose_fallback_placement(const CollapseInfo& ci, double min_cos) {
+    chosen_valid_ = false;
+    if (!settings_.placement || model_) return false;
+    const CollapseResult& solved = solve(ci);
+    if (!solved.valid) return false;
+    double best = std::numeric_limits<double>::infinity();
+    for (const auto& [p, w] : placements_to_try(ci, solved)) {
+      if (w.size() > settings_.max_influences || flips(ci, p, w, min_cos)) continue;
+      CollapseResult r;
+      r.position = p;
+      r.weights = w;
+      r.error = error_at(ci, p, w);
+      r.area = solved.area;
+      r.valid = true;
+      if (settings_.priority(r) < best) {
+        best = settings_.priority(r);
+        chosen_ = r;
+        chosen_valid_ = true;
+      }
+    }
+    chosen_v0_ = ci.v0;
+    chosen_v1_ = ci.v1;
+    return chosen_valid_;
+  }
+  /// The skinned quadric's error of collapsing \p ci with the merged vertex at \p rest with skin \p w.
+  double error_at(const CollapseInfo& ci, const Eigen::Vector3d& rest, const Influences& w) const {
+    double e = 0.0;
+    for (int j = 0; j < poses_.n_poses(); ++j) {
+      const Eigen::Vector3d x = poses_.posed_point(rest, w, j);
+      e += poses_.quadric(ci.v0, j)(x) + poses_.quadric(ci.v1, j)(x);
+    }
+    return std::max(e, 0.0);
+  }
+  /// Drops the fallback chosen last: the next question about a collapse is about its solved placement.
+  void forget_chosen_placement() { chosen_valid_ = false; }
+
   // ---- pricing (see SolverModuleT.hh) ----------------------------------------------------------------------
 
   // Under a driver that asks binary modules at pop time (checks_at_pop) verdicts are never stale and
@@ -301,6 +349,7 @@ public:
   /// decimation solves every edge ahead on threads() threads: every edge is priced first anyway.
   void begin_pricing(const CollapseInfo& ci) {
     if (!solved_ahead_) solve_all_edges(threads_);
+    if (!chosen_for(ci)) chosen_valid_ = false;
     if (!checks_at_pop_) stale_.begin_pricing(ci);
   }
   /// The priority module reports a collapse that every binary module accepted, with its cost.
@@ -323,7 +372,13 @@ public:
     uv_.record(ci.v0, ci.v1);
     morph_.record(ci.v0, ci.v1);
     if (!settings_.placement) return;
-    pending_result_ = solve(ci);
+    if (chosen_for(ci)) {
+      pending_result_ = chosen_;
+      ++stats_.fold_fallbacks;
+    } else {
+      pending_result_ = solve(ci);
+    }
+    chosen_valid_ = false;
     if (settings_.fold_check && !checks_at_pop_ && pending_result_.valid &&
         flips(ci, pending_result_.position, pending_result_.weights, settings_.fold_cos))
       replace_stale_placement(ci);
@@ -422,24 +477,38 @@ private:
   // around v0 after each collapse, not those around a moved v1: the verdict may be stale. Place the
   // vertex where it flips nothing now, trying the solved weights at the endpoints and the midpoint,
   // then v1 as it is.
+  // With fold_fallback the cheapest that folds nothing, as the collapse was priced.
   void replace_stale_placement(const CollapseInfo& ci) {
+    if (settings_.fold_fallback && choose_fallback_placement(ci, settings_.fold_cos)) {
+      pending_result_ = chosen_;
+      chosen_valid_ = false;
+      ++stats_.fold_fallbacks;
+      return;
+    }
     ++stats_.placement_fallbacks;
-    const Eigen::Vector3d p0 = to_eigen(mesh_.point(ci.v0)), p1 = to_eigen(mesh_.point(ci.v1));
-    const Influences solved = pending_result_.weights;
-    const Influences& w0 = mesh_.property(h_inf_, ci.v0);
-    const Influences& w1 = mesh_.property(h_inf_, ci.v1);
-    const std::pair<Eigen::Vector3d, const Influences*> candidates[] = {
-        {p1, &solved}, {Eigen::Vector3d(0.5 * (p0 + p1)), &solved}, {p0, &solved}, {p1, &w1}, {p0, &w0}};
-    for (const auto& [p, w] : candidates) {
-      if (w->size() <= settings_.max_influences && !flips(ci, p, *w, settings_.fold_cos)) {
+    for (const auto& [p, w] : placements_to_try(ci, pending_result_)) {
+      if (w.size() <= settings_.max_influences && !flips(ci, p, w, settings_.fold_cos)) {
         pending_result_.position = p;
-        pending_result_.weights = *w;
+        pending_result_.weights = w;
         return;
       }
     }
     pending_result_.valid = false;
     ++stats_.forced_flips;
   }
+
+  // Where a collapse may put the merged vertex when its solved placement folds: v1, the midpoint and v0
+  // with the solved skin, then v1 and v0 as they are.
+  std::array<std::pair<Eigen::Vector3d, Influences>, 5> placements_to_try(const CollapseInfo& ci,
+                                                                          const CollapseResult& solved) const {
+    const Eigen::Vector3d p0 = to_eigen(mesh_.point(ci.v0)), p1 = to_eigen(mesh_.point(ci.v1));
+    return {{{p1, solved.weights},
+             {Eigen::Vector3d(0.5 * (p0 + p1)), solved.weights},
+             {p0, solved.weights},
+             {p1, mesh_.property(h_inf_, ci.v1)},
+             {p0, mesh_.property(h_inf_, ci.v0)}}};
+  }
+  bool chosen_for(const CollapseInfo& ci) const { return chosen_valid_ && chosen_v0_ == ci.v0 && chosen_v1_ == ci.v1; }
 
   // A vertex with too many bones: weight solve on its own quadrics at its own position, capped.
   void reduce_vertex(VertexHandle vh) {
@@ -467,6 +536,9 @@ private:
   int threads_ = std::max(1u, std::thread::hardware_concurrency());
   bool pending_ = false;
   CollapseResult pending_result_;
+  bool chosen_valid_ = false;  // choose_fallback_placement's answer, for the collapse chosen_v0_ -> chosen_v1_
+  VertexHandle chosen_v0_, chosen_v1_;
+  CollapseResult chosen_;
   CollapseResult answer_;  // what solve() returns
   EdgeProblem problem_;    // reused: no allocation per solve once grown
   mutable std::vector<RingFace> ring_faces_;

@@ -17,6 +17,9 @@ struct SolverSettings : SolveSettings {
   bool fold_check = false;
   /// Smallest allowed cosine between a face's normals before and after a collapse, in every pose.
   double fold_cos = 0.0;
+  /// Whether a collapse whose solved placement folds may be made at the cheapest placement that folds
+  /// nothing instead: the midpoint or an endpoint (ModSkinnedFoldOverT::set_fallback_placement).
+  bool fold_fallback = false;
   /// Whether a module other than the fold check re-judges DecimaterT's stored verdicts near v1 after each
   /// collapse (SolverClientT::now_refuses; ModDeviationBoundT asks for it).
   bool recheck_stale = false;
