@@ -211,6 +211,27 @@ TEST(Cli, TheFoldOverLimitIsRelaxedToComeCloserToTheTargetUnlessStrict) {
   omsk_test::expect_valid_gltf((d / "f0.glb").string());
 }
 
+TEST(Cli, ATargetBelowWhatTheTopologyAllowsStopsThereAndSaysWhy) {
+  // Testwuson is 68 pieces (horns, eyes, teeth...): open ones end as single triangles or strips, closed ones
+  // as tetrahedra. Past that no collapse keeps the mesh manifold, and the table says so instead of blaming
+  // the modules.
+  const auto d = scratch("floor");
+  const auto r = cli(wuson + " -o f.glb --faces 10 --no-eval --no-refit --report f.json", d);
+  ASSERT_EQ(r.code, 0) << r.out;
+  const auto lod = omsk_test::read_json(d / "f.json")["lods"][0];
+  EXPECT_FALSE(lod["target_reached"].get<bool>());
+  EXPECT_TRUE(lod["at_topology_floor"].get<bool>());
+  EXPECT_GT(lod["faces"].get<size_t>(), 68u);
+  EXPECT_NE(r.out.find("no collapse is left that keeps the mesh manifold (68 pieces)"), std::string::npos) << r.out;
+  // Half the triangles: reached, nowhere near the floor.
+  const auto h = cli(wuson + " -o h.glb --ratio 0.5 --no-eval --no-refit --report h.json --quiet", d);
+  ASSERT_EQ(h.code, 0) << h.out;
+  const auto half = omsk_test::read_json(d / "h.json")["lods"][0];
+  EXPECT_TRUE(half["target_reached"].get<bool>());
+  EXPECT_FALSE(half["at_topology_floor"].get<bool>());
+  EXPECT_EQ(half["fold_fallbacks"].get<size_t>(), 0u) << "the fallback placements are for a target out of reach";
+}
+
 TEST(Cli, MaxErrorBoundsEveryLodAndStopsWhereTheBoundWould) {
   const auto d = scratch("max_error");
   const auto r = cli(wuson + " -o b.glb --lods 0.5,0.1 --max-error 0.5 --no-eval --report b.json --quiet", d);

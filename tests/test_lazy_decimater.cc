@@ -225,3 +225,30 @@ TEST(LazyDecimater, ACandidateAcceptedAtADearerPlacementIsQueuedAgain) {
     }
   }
 }
+
+TEST(LazyDecimater, TheTopologyStopsCollapsesAtATetrahedronAndATriangle) {
+  Mesh mesh = make_bending_cylinder(8, 8);
+  Lazy dec(mesh);
+  OpenMesh::Decimater::ModQuadricT<Mesh>::Handle hq;
+  dec.add(hq);
+  ASSERT_TRUE(dec.initialize());
+  EXPECT_TRUE(dec.topology_allows_a_collapse());
+  Mesh tiny;
+  tiny.request_vertex_status();
+  tiny.request_edge_status();
+  tiny.request_face_status();
+  std::vector<Mesh::VertexHandle> v;
+  for (auto p : {Mesh::Point(0, 0, 0), Mesh::Point(1, 0, 0), Mesh::Point(0, 1, 0), Mesh::Point(0, 0, 1)})
+    v.push_back(tiny.add_vertex(p));
+  for (auto f : {std::array<int, 3>{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {0, 3, 2}})
+    tiny.add_face(v[f[0]], v[f[1]], v[f[2]]);
+  auto t = tiny.add_vertex(Mesh::Point(5, 0, 0)), u = tiny.add_vertex(Mesh::Point(6, 0, 0)),
+       w = tiny.add_vertex(Mesh::Point(5, 1, 0));
+  tiny.add_face(t, u, w);
+  Lazy stuck(tiny);
+  OpenMesh::Decimater::ModQuadricT<Mesh>::Handle hq2;
+  stuck.add(hq2);
+  ASSERT_TRUE(stuck.initialize());
+  EXPECT_FALSE(stuck.topology_allows_a_collapse()) << "a tetrahedron and a lone triangle are as small as they get";
+  EXPECT_EQ(stuck.decimate(0), 0u);
+}

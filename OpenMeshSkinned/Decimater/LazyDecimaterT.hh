@@ -107,6 +107,14 @@ public:
   void set_threads(int n) { threads_ = std::max(1, n); }
   int threads() const { return threads_; }
 
+  /** Whether the mesh's topology still allows a collapse (DecimaterT's is_collapse_legal, which the modules
+   *  are not asked about): when it does not, the mesh is as small as its pieces can get by collapses. */
+  bool topology_allows_a_collapse() {
+    for (auto h : mesh_.halfedges())
+      if (!mesh_.status(mesh_.edge_handle(h)).deleted() && this->is_collapse_legal(CollapseInfo(mesh_, h))) return true;
+    return false;
+  }
+
   /// \p n collapses at most (0: as many as possible). Returns the number made.
   size_t decimate(size_t n = 0, bool only_selected = false) {
     if (!n) n = mesh_.n_vertices();

@@ -25,6 +25,7 @@
 #include <chrono>
 #include <cstdio>
 #include <iostream>
+#include <numeric>
 #include <optional>
 #include <stdexcept>
 
@@ -116,7 +117,28 @@ size_t live_faces(const Mesh& mesh) {
   return n;
 }
 
+// Connected pieces of a mesh without deleted elements.
+size_t count_pieces(const Mesh& mesh) {
+  std::vector<int> parent(mesh.n_vertices());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto root = [&](int v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (auto eh : mesh.edges())
+    parent[root(mesh.to_vertex_handle(mesh.halfedge_handle(eh, 0)).idx())] =
+        root(mesh.from_vertex_handle(mesh.halfedge_handle(eh, 0)).idx());
+  size_t n = 0;
+  for (auto vh : mesh.vertices()) n += !mesh.is_isolated(vh) && root(vh.idx()) == vh.idx();
+  return n;
+}
+
 }  // namespace
+
+// Collapses the shared solver made at a fallback placement so far (0 without the skinned fold-over check).
+size_t fold_fallbacks(Decimater& dec, Handles& h) {
+  return h.fold_over.is_valid() ? dec.module(h.fold_over).solver().stats().fold_fallbacks : 0;
+}
 
 int max_influences_of(const Mesh& mesh) {
   const auto h = OpenMeshSkinned::influences_handle(mesh);
@@ -216,22 +238,30 @@ std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vect
     // Reach the requested count: when every collapse left folds a face by more than 90 degrees in some
     // pose, allow a larger turn step by step (and say so), unless --strict-fold, or --max-error, which puts
     // the bound before the count (what stopped may be the bound: folds would buy nothing but folds).
-    auto set_fold = [&](double angle) {
-      if (h.fold_over.is_valid()) dec->module(h.fold_over).set_max_angle(angle);
+    auto set_fold = [&](double angle, bool fallback) {
+      if (h.fold_over.is_valid()) {
+        dec->module(h.fold_over).set_max_angle(angle);
+        dec->module(h.fold_over).set_fallback_placement(fallback);
+      }
       if (h.frame_fold.is_valid()) dec->module(h.frame_fold).set_max_angle(angle);
       if (h.frames.is_valid()) dec->module(h.frames).set_max_fold_angle(angle);
     };
     if (!opt.strict_fold && !h.bound.is_valid() &&
         (h.fold_over.is_valid() || h.frame_fold.is_valid() || h.frames.is_valid())) {
-      for (double angle : {120.0, 150.0, 175.0}) {
+      const size_t fallbacks_before = fold_fallbacks(*dec, h);
+      for (double angle : {90.0, 120.0, 150.0, 175.0}) {
         const size_t now = live_faces(mesh);
         if (now <= targets[i]) break;
-        set_fold(angle);
+        // At 90 degrees only the placements change: the cheapest one that folds nothing.
+        if (angle == 90.0 && !h.fold_over.is_valid()) continue;
+        set_fold(angle, true);
         collapses += dec->decimate_to_faces(0, targets[i] + (mesh.n_faces() - now));
         lod.fold_limit = angle;
       }
-      set_fold(90.0);
+      lod.fold_fallbacks = fold_fallbacks(*dec, h) - fallbacks_before;
+      set_fold(90.0, false);
     }
+    lod.at_floor = live_faces(mesh) > targets[i] && !dec->topology_allows_a_collapse();
     lod.ratio = ratios[i];
     lod.target = targets[i];
     lod.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
@@ -251,6 +281,7 @@ std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vect
       snap = compact;
     }
     lod.faces = snap.n_faces();
+    if (lod.at_floor) lod.pieces = count_pieces(snap);
     lod.vertices = snap.n_vertices();
     lod.max_influences = max_influences_of(snap);
     out[i].first = lod;

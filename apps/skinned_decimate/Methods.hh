@@ -37,6 +37,9 @@ struct Lod {
   size_t keys = 0;                    // key frames over its clips' channels (fewer with --anim-error)
   int joints = 0;                     // its skeleton's joints (fewer with --max-joints)
   double fold_limit = 90.0;           // the largest face turn allowed to reach the target (degrees)
+  bool at_floor = false;              // stopped above the target where no collapse keeps the mesh manifold
+  size_t pieces = 0;                  // then: its connected pieces
+  size_t fold_fallbacks = 0;          // collapses made off their solved placement, which folded, to reach it
   double deviation_bound = -1.0;      // --max-error: bound on the original's vertices' distance, % (< 0: none)
   bool evaluated = false;             // false with --no-eval
   double rms = 0.0, hausdorff = 0.0;  // % of the rest-pose bounding-box diagonal

@@ -38,12 +38,21 @@ void print_table(const std::string& title, const std::vector<std::pair<Lod, Mesh
               << lod.max_influences << std::setw(14) << (lod.evaluated ? fmt(lod.rms, 4) : "-") << std::setw(15)
               << (lod.evaluated ? fmt(lod.hausdorff, 4) : "-") << std::setw(8) << lod.joints << std::setw(8) << lod.keys
               << "\n";
-  for (const auto& [lod, mesh] : chain)
+  for (const auto& [lod, mesh] : chain) {
+    if (lod.fold_fallbacks > 0)
+      std::cout << "  ratio " << fmt(lod.ratio, 4) << ": " << lod.fold_fallbacks
+                << " collapses were made at the midpoint or an endpoint, their best placement folding a face, to "
+                   "come closer to the target (--strict-fold keeps them waiting)\n";
     if (lod.fold_limit > 90.0)
       std::cout << "  ratio " << fmt(lod.ratio, 4) << ": the fold-over limit was relaxed to " << fmt(lod.fold_limit, 0)
                 << " degrees to come closer to the target (--strict-fold keeps 90)\n";
+  }
   for (const auto& [lod, mesh] : chain)
-    if (lod.faces > lod.target)
+    if (lod.faces > lod.target && lod.at_floor)
+      std::cout << "  ratio " << fmt(lod.ratio, 4) << ": target of " << lod.target
+                << " triangles not reached; stopped at " << lod.faces
+                << ": no collapse is left that keeps the mesh manifold (" << lod.pieces << " pieces)\n";
+    else if (lod.faces > lod.target)
       std::cout << "  ratio " << fmt(lod.ratio, 4) << ": target of " << lod.target
                 << " triangles not reached; stopped at " << lod.faces
                 << " (every remaining collapse is refused: it would break the mesh, fold a face in some pose, "
@@ -78,6 +87,8 @@ json lod_json(const Lod& lod, const std::vector<OpenMeshSkinned::Clip>& clips,
             {"max_influences", lod.max_influences},
             {"joints", lod.joints},
             {"fold_limit_deg", lod.fold_limit},
+            {"fold_fallbacks", lod.fold_fallbacks},
+            {"at_topology_floor", lod.at_floor},
             {"deviation_bound", lod.deviation_bound >= 0.0 ? json(lod.deviation_bound) : json(nullptr)},
             {"keys", lod.keys},
             {"heldout_rms", lod.evaluated ? json(lod.rms) : json(nullptr)},
