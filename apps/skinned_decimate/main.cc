@@ -93,8 +93,9 @@ int main(int argc, char** argv) {
                  "or frames (the paper's merge of whole key frames by joint energy)")
       ->check(CLI::IsMember({"channels", "frames"}));
   app.add_flag("--strict-fold", opt.strict_fold,
-               "Stop where every collapse would turn a face by more than 90 degrees in some pose (by default the "
-               "limit is relaxed to 120, 150, then 175 degrees to reach the target, and the table says so)");
+               "Stop where every collapse would turn a face by more than 90 degrees in some pose (by default, to "
+               "reach the target, such a collapse is first made at the midpoint or an endpoint where that folds "
+               "nothing, then the limit is relaxed to 120, 150, then 175 degrees, and the table says so)");
   app.add_option("--max-error", opt.max_error,
                  "Bound the worst case: no vertex of the input may end up further than E % of the diagonal from the "
                  "LOD in any example pose (a collapse that would break it waits; a LOD may stop above its target, "
