@@ -57,6 +57,38 @@ TEST(JointQuadrics, EnergyEqualsTheSumOverPoses) {
     }
 }
 
+TEST(JointQuadrics, SharedPosesGiveTheSameSolveAsCopiedOnes) {
+  // The decimation's problems read the transforms from its poses (use_poses) instead of copying them.
+  std::mt19937 rng(11);
+  for (int m : {2, 5, 8}) {
+    std::vector<Pose> poses;
+    for (int j = 0; j < 4; ++j) {
+      Pose pose = Pose::identity(m + 3);  // more joints than the support: indexed by skeleton joint
+      for (auto& t : pose.joint) {
+        t = Affine3::Random();
+        t.leftCols<3>() += Eigen::Matrix3d::Identity();
+      }
+      poses.push_back(pose);
+    }
+    EdgeProblem copied = random_problem(m, 4, rng);
+    for (int k = 0; k < m; ++k) copied.joint[k] += 3;  // the support is joints 3 .. m + 2
+    for (int j = 0; j < 4; ++j) copied.set_pose(j, poses[j]);
+    EdgeProblem shared = copied;
+    shared.transform.clear();
+    shared.use_poses(&poses);
+    for (int j = 0; j < 4; ++j)
+      for (int k = 0; k < m; ++k) EXPECT_EQ(shared.M(j, k), copied.M(j, k));
+    CollapseResult a, b;
+    WeightSolver wa, wb;
+    solve_collapse(copied, SolveSettings{}, wa, a);
+    solve_collapse(shared, SolveSettings{}, wb, b);
+    ASSERT_TRUE(a.valid);
+    EXPECT_EQ(a.position, b.position);
+    EXPECT_EQ(a.weights, b.weights);
+    EXPECT_EQ(a.error, b.error);
+  }
+}
+
 TEST(JointQuadrics, WeightMatrixEqualsTheSumOverPoses) {
   std::mt19937 rng(11);
   const EdgeProblem p = random_problem(6, 5, rng);

@@ -463,11 +463,11 @@ public:
 private:
   void load_problem(VertexHandle va, VertexHandle vb, EdgeProblem& problem) const {
     problem.set_skins(mesh_.property(h_inf_, va), mesh_.property(h_inf_, vb));
+    problem.use_poses(&poses_.poses());
     problem.resize(poses_.n_poses());
     for (int j = 0; j < poses_.n_poses(); ++j) {
       problem.quadric[j] = poses_.quadric(va, j);
       if (vb != va) problem.quadric[j] += poses_.quadric(vb, j);
-      problem.set_pose(j, poses_.pose(j));
     }
     problem.pa = to_eigen(mesh_.point(va));
     problem.pb = to_eigen(mesh_.point(vb));

@@ -48,6 +48,7 @@ public:
 
   int n_poses() const { return P_; }
   const Pose& pose(int j) const { return poses_[j]; }
+  const std::vector<Pose>& poses() const { return poses_; }
   OpenMesh::VPropHandleT<Influences> influences() const { return h_inf_; }
 
   /// Vertex \p v posed in pose \p j, in doubles (computed).

@@ -99,7 +99,7 @@ void EdgeProblem::set_skins(const Influences& wa, const Influences& wb) {
 void EdgeProblem::resize(int n) {
   poses = n;
   quadric.resize(n);
-  transform.resize(static_cast<size_t>(n) * kMaxSupport);
+  if (!shared_poses) transform.resize(static_cast<size_t>(n) * kMaxSupport);
 }
 
 void EdgeProblem::set_pose(int j, const Pose& pose) {

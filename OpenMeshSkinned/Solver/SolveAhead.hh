@@ -29,8 +29,8 @@ class SolveAhead {
 public:
   /// Solves into \p cache (of \p n_edges edges) with \p settings and a weight solver set up as \p like.
   SolveAhead(EdgeCache& cache, size_t n_edges, const SolveSettings& settings, const WeightSolver& like);
-  /// Jobs that can wait at once. The worker seldom lags by more than a few; each slot holds a problem
-  /// of ~14 KB (512 slots were 7 MB, with no fewer solves left to the mesh thread than 128).
+  /// Jobs that can wait at once. The worker seldom lags by more than a few (512 slots left no fewer
+  /// solves to the mesh thread than 128).
   static constexpr size_t kRing = 128;
   ~SolveAhead();
   SolveAhead(const SolveAhead&) = delete;
