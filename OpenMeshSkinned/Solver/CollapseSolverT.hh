@@ -413,8 +413,9 @@ public:
         const int b = std::max(v1.idx(), mesh_.to_vertex_handle(h).idx());
         const int e = mesh_.edge_handle(h).idx();
         if (EdgeProblem* p = ahead_->reserve(e, a, b, cache_.stamp(a), cache_.stamp(b))) {
-          load_problem(VertexHandle(a), VertexHandle(b), *p);
-          ahead_->submit();
+          // The support is found on the worker: the skins are copied, not merged, on the mesh thread.
+          load_poses(VertexHandle(a), VertexHandle(b), *p);
+          ahead_->submit(mesh_.property(h_inf_, VertexHandle(a)), mesh_.property(h_inf_, VertexHandle(b)));
         }
       }
     for (auto* c : clients_) c->collapse_applied(ci);
@@ -463,6 +464,10 @@ public:
 private:
   void load_problem(VertexHandle va, VertexHandle vb, EdgeProblem& problem) const {
     problem.set_skins(mesh_.property(h_inf_, va), mesh_.property(h_inf_, vb));
+    load_poses(va, vb, problem);
+  }
+  // All of a problem but its skins: the endpoints' summed quadrics and positions, and the poses.
+  void load_poses(VertexHandle va, VertexHandle vb, EdgeProblem& problem) const {
     problem.use_poses(&poses_.poses());
     problem.resize(poses_.n_poses());
     for (int j = 0; j < poses_.n_poses(); ++j) {

@@ -48,7 +48,16 @@ EdgeProblem* SolveAhead::reserve(int e, int a, int b, uint32_t sa, uint32_t sb) 
   job.sa = sa;
   job.sb = sb;
   job.ticket = ++tickets_ & 0x3fffffffu;
+  job.skins_to_set = false;
   return &job.problem;
+}
+
+void SolveAhead::submit(const Influences& wa, const Influences& wb) {
+  Job& job = ring_[reserved_ % kRing];
+  job.wa = wa;
+  job.wb = wb;
+  job.skins_to_set = true;
+  submit();
 }
 
 void SolveAhead::submit() {
@@ -72,6 +81,7 @@ void SolveAhead::work() {
     if (!job.slot.compare_exchange_strong(s, kRunning, std::memory_order_acq_rel)) continue;
     uint32_t waiting = job.ticket << 2 | kWaiting;
     if (mark_[job.edge].compare_exchange_strong(waiting, job.ticket << 2 | kSolving, std::memory_order_acq_rel)) {
+      if (job.skins_to_set) job.problem.set_skins(job.wa, job.wb);
       solve_collapse(job.problem, settings_, weights_, answer_);
       cache_.store_solved(job.edge, job.a, job.b, job.sa, job.sb, answer_);
       mark_[job.edge].store(job.ticket << 2 | kSolved, std::memory_order_release);

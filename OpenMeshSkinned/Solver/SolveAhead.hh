@@ -41,6 +41,8 @@ public:
   /// Mesh thread only.
   EdgeProblem* reserve(int e, int a, int b, uint32_t sa, uint32_t sb);
   void submit();
+  /// As submit(), for a problem filled but for its skins: the worker calls set_skins(\p wa, \p wb).
+  void submit(const Influences& wa, const Influences& wb);
 
   /// Makes edge \p e's cache entry the mesh thread's again (see the file comment). Mesh thread only.
   void settle(int e);
@@ -61,6 +63,8 @@ private:
     std::atomic<int> slot{kFree};
     int edge = -1, a = -1, b = -1;
     uint32_t sa = 0, sb = 0, ticket = 0;
+    bool skins_to_set = false;
+    Influences wa, wb;
     EdgeProblem problem;
   };
   void work();
