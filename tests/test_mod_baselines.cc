@@ -4,6 +4,7 @@
 #include <OpenMeshSkinned/Decimater/Baselines/ModDeformationSensitiveT.hh>
 #include <OpenMeshSkinned/Decimater/Baselines/ModPoseIndependentQuadricT.hh>
 #include <OpenMeshSkinned/Decimater/Baselines/ModRestPoseQuadricT.hh>
+#include <OpenMeshSkinned/Decimater/LazyDecimaterT.hh>
 #include <OpenMeshSkinned/Mesh/Procedural.hh>
 
 using namespace OpenMeshSkinned;
@@ -147,4 +148,40 @@ TEST(Baselines, DeCoroSamplesItsDistributions) {
   for (auto vh : a.vertices())
     if (vh.idx() < int(b.n_vertices())) diff += (a.point(vh) - b.point(Mesh::VertexHandle(vh.idx()))).norm();
   EXPECT_GT(diff, 1e-3);
+}
+
+TEST(Baselines, TheQuadricBaselinesTakeFallbackPlacementsPricedByTheirOwnQuadric) {
+  // DeCoro's and the rest-pose quadric price a placement other than their optimum themselves, so the fold
+  // check's fallback placements serve them too: at 20 degrees on Testwuson they go further, fold nothing,
+  // and each fallback collapse was priced by the module's quadric at the placement it was made at.
+  for (Method method : {Method::DeCoro, Method::Rest}) {
+    size_t faces[2] = {0, 0}, fallbacks[2] = {0, 0};
+    for (int fallback = 0; fallback < 2; ++fallback) {
+      Mesh mesh = omsk_test::load_character("X/Testwuson.X", 8);
+      LazyDecimaterT<Mesh> dec(mesh);
+      ModRestPoseQuadricT<Mesh>::Handle hr;
+      ModPoseIndependentQuadricT<Mesh>::Handle hp;
+      ModSkinnedFoldOverT<Mesh>::Handle hf;
+      omsk_test::FlipWatcherT<Mesh>::Handle hw;
+      if (method == Method::DeCoro)
+        dec.add(hp);
+      else
+        dec.add(hr);
+      dec.add(hf);
+      dec.add(hw);
+      dec.module(hf).set_max_angle(20.0);
+      dec.module(hf).set_fallback_placement(fallback == 1);
+      dec.module(hw).max_angle_deg = 20.0;
+      ASSERT_TRUE(dec.initialize());
+      dec.decimate_to_faces(0, mesh.n_faces() / 100);
+      EXPECT_EQ(dec.module(hw).flipped, 0u);
+      fallbacks[fallback] = dec.module(hf).solver().stats().fold_fallbacks;
+      mesh.garbage_collection();
+      faces[fallback] = mesh.n_faces();
+      omsk_test::expect_valid_skin(mesh, Influences::kCapacity);
+    }
+    EXPECT_EQ(fallbacks[0], 0u);
+    EXPECT_GT(fallbacks[1], 0u);
+    EXPECT_LT(faces[1], faces[0] * 9 / 10) << faces[0] << " -> " << faces[1];
+  }
 }

@@ -50,8 +50,9 @@ public:
   /** When the solved placement of a collapse would fold, allow the collapse at the cheapest placement that
    *  folds nothing instead: the midpoint or an endpoint, with the solved skin or the endpoint's own. The
    *  collapse is then priced at that placement (LazyDecimaterT queues it again if that makes it no longer
-   *  the cheapest). Off by default: such a collapse waits until its neighbourhood changes. Only with the
-   *  skinned quadric's placement (a baseline's own cost model cannot price another placement). */
+   *  the cheapest). Off by default: such a collapse waits until its neighbourhood changes. With a placing
+   *  priority module that can price another placement: the skinned quadric, the rest-pose and DeCoro's
+   *  quadrics (not the triangle compactness); without one, v1 stays where it is. */
   void set_fallback_placement(bool on) {
     fallback_ = on;
     this->settings_changed();

@@ -60,6 +60,12 @@ public:
   /// Whether an answer also depends on the faces around the edge (then a collapse makes the answers of
   /// every edge around the surviving vertex's ring stale, not only of the edges at that vertex).
   virtual bool ring_dependent() const { return false; }
+  /// The error of merging \p a and \p b at \p rest with skin \p w, in solve_edge()'s units; false when the
+  /// model can price only its own placement (the fold check's fallback placements are then not offered).
+  virtual bool error_at(typename Mesh::VertexHandle /*a*/, typename Mesh::VertexHandle /*b*/,
+                        const Eigen::Vector3d& /*rest*/, const Influences& /*w*/, double& /*error*/) {
+    return false;
+  }
 };
 
 /// What a module attached to the solver asks of it (SolverModuleT implements it).
@@ -302,11 +308,11 @@ public:
   /** Chooses, for a collapse whose solved placement folds, the cheapest placement that turns no face by
    *  more than acos(\p min_cos) in any pose: the midpoint or an endpoint with the solved skin, or an
    *  endpoint with its own. The collapse of \p ci then uses it, until another collapse is priced or made.
-   *  False when every one folds, or when a module's own cost model places vertices (it cannot price
-   *  another placement). */
+   *  False when every one folds, or when a module's own cost model places vertices and cannot price
+   *  another placement (EdgeModelT::error_at). */
   bool choose_fallback_placement(const CollapseInfo& ci, double min_cos) {
     chosen_valid_ = false;
-    if (!settings_.placement || model_) return false;
+    if (!settings_.placement) return false;
     const CollapseResult& solved = solve(ci);
     if (!solved.valid) return false;
     double best = std::numeric_limits<double>::infinity();
@@ -315,7 +321,10 @@ public:
       CollapseResult r;
       r.position = p;
       r.weights = w;
-      r.error = error_at(ci, p, w);
+      if (!model_)
+        r.error = error_at(ci, p, w);
+      else if (!model_->error_at(ci.v0, ci.v1, p, w, r.error))
+        return false;
       r.area = solved.area;
       r.valid = true;
       if (settings_.priority(r) < best) {

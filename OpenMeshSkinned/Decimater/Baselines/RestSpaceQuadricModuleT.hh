@@ -54,7 +54,8 @@ protected:
   OpenMesh::VPropHandleT<Influences> influences() const { return h_inf_; }
 
   float price(const CollapseInfo& ci) override {
-    const CollapseResult& r = this->solver().solve(ci);
+    // The placement: a fold-over check that asked first may have moved it off the solved one.
+    const CollapseResult& r = this->solver().placement(ci);
     if (!r.valid || r.error > max_err_ * ModBase::error_tolerance_factor_) return float(ModBase::ILLEGAL_COLLAPSE);
     this->solver().note_legal_priority(ci, r.error);
     return static_cast<float>(std::min<double>(r.error, FLT_MAX / 2));
@@ -73,6 +74,13 @@ private:
     out.weights = merge_weights(rule_, out.position, pa, mesh.property(h_inf_, a), pb, mesh.property(h_inf_, b),
                                 this->solver().max_influences());
     out.valid = out.position.allFinite();
+  }
+  bool error_at(typename MeshT::VertexHandle a, typename MeshT::VertexHandle b, const Eigen::Vector3d& rest,
+                const Influences&, double& error) override {
+    PoseQuadric q = quadric_[a.idx()];
+    q += quadric_[b.idx()];
+    error = std::max(0.0, q(rest));
+    return true;
   }
 
   OpenMesh::VPropHandleT<Influences> h_inf_;
