@@ -324,7 +324,7 @@ public:
       if (!model_)
         r.error = error_at(ci, p, w);
       else if (!model_->error_at(ci.v0, ci.v1, p, w, r.error))
-        return false;
+        return chosen_valid_ = false;
       r.area = solved.area;
       r.valid = true;
       if (settings_.priority(r) < best) {

@@ -133,12 +133,12 @@ size_t count_pieces(const Mesh& mesh) {
   return n;
 }
 
-}  // namespace
-
 // Collapses the shared solver made at a fallback placement so far (0 without the skinned fold-over check).
 size_t fold_fallbacks(Decimater& dec, Handles& h) {
   return h.fold_over.is_valid() ? dec.module(h.fold_over).solver().stats().fold_fallbacks : 0;
 }
+
+}  // namespace
 
 int max_influences_of(const Mesh& mesh) {
   const auto h = OpenMeshSkinned::influences_handle(mesh);
@@ -236,8 +236,9 @@ std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vect
     collapses += dec->decimate_to_faces(0, targets[i] + (mesh.n_faces() - live_faces(mesh)));
     Lod lod;
     // Reach the requested count: when every collapse left folds a face by more than 90 degrees in some
-    // pose, allow a larger turn step by step (and say so), unless --strict-fold, or --max-error, which puts
-    // the bound before the count (what stopped may be the bound: folds would buy nothing but folds).
+    // pose, make such collapses at the cheapest placement that folds nothing, then allow a larger turn step
+    // by step (and say so), unless --strict-fold, or --max-error, which puts the bound before the count
+    // (what stopped may be the bound: folds would buy nothing but folds).
     auto set_fold = [&](double angle, bool fallback) {
       if (h.fold_over.is_valid()) {
         dec->module(h.fold_over).set_max_angle(angle);
