@@ -223,6 +223,9 @@ TEST(Cli, ATargetBelowWhatTheTopologyAllowsStopsThereAndSaysWhy) {
   EXPECT_TRUE(lod["at_topology_floor"].get<bool>());
   EXPECT_GT(lod["faces"].get<size_t>(), 68u);
   EXPECT_NE(r.out.find("no collapse is left that keeps the mesh manifold (68 pieces)"), std::string::npos) << r.out;
+  // The strict run already got there: nothing is relaxed, and the table does not claim it was.
+  EXPECT_EQ(lod["fold_limit_deg"].get<double>(), 90.0);
+  EXPECT_EQ(r.out.find("relaxed"), std::string::npos) << r.out;
   // Half the triangles: reached, nowhere near the floor.
   const auto h = cli(wuson + " -o h.glb --ratio 0.5 --no-eval --no-refit --report h.json --quiet", d);
   ASSERT_EQ(h.code, 0) << h.out;

@@ -252,7 +252,8 @@ std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vect
       const size_t fallbacks_before = fold_fallbacks(*dec, h);
       for (double angle : {90.0, 120.0, 150.0, 175.0}) {
         const size_t now = live_faces(mesh);
-        if (now <= targets[i]) break;
+        // Nothing to relax when no collapse at all is left that keeps the mesh manifold.
+        if (now <= targets[i] || !dec->topology_allows_a_collapse()) break;
         // At 90 degrees only the placements change: the cheapest one that folds nothing.
         if (angle == 90.0 && !h.fold_over.is_valid()) continue;
         set_fold(angle, true);
