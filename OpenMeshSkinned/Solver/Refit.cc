@@ -123,15 +123,20 @@ void for_each_pose(size_t n, int threads, Work work) {
   for (auto& th : pool) th.join();
 }
 
-// Whether some face turns by more than 90 degrees, in some pose, between \p a and \p b (posed positions).
-bool folds(const SkinnedMesh& mesh, const std::vector<std::vector<Eigen::Vector3d>>& a,
-           const std::vector<std::vector<Eigen::Vector3d>>& b) {
+// The faces that turn by more than 90 degrees, in some pose, between \p a and \p b (posed positions).
+std::vector<SkinnedMesh::FaceHandle> folding_faces(const SkinnedMesh& mesh,
+                                                   const std::vector<std::vector<Eigen::Vector3d>>& a,
+                                                   const std::vector<std::vector<Eigen::Vector3d>>& b) {
+  std::vector<char> folded(mesh.n_faces(), 0);
   for (size_t j = 0; j < a.size(); ++j) {
     const auto na = skin_face_normals(mesh, a[j]), nb = skin_face_normals(mesh, b[j]);
     for (auto fh : mesh.faces())
-      if (na[fh.idx()].squaredNorm() > 0.0 && na[fh.idx()].dot(nb[fh.idx()]) <= 0.0) return true;
+      if (na[fh.idx()].squaredNorm() > 0.0 && na[fh.idx()].dot(nb[fh.idx()]) <= 0.0) folded[fh.idx()] = 1;
   }
-  return false;
+  std::vector<SkinnedMesh::FaceHandle> out;
+  for (auto fh : mesh.faces())
+    if (folded[fh.idx()]) out.push_back(fh);
+  return out;
 }
 
 }  // namespace
@@ -252,18 +257,27 @@ RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const
     if (solver.info() != Eigen::Success) break;
     const Eigen::VectorXd dx = solver.solve(ne.rhs);
     if (solver.info() != Eigen::Success || !dx.allFinite()) break;
-    // Halve the step until no face folds in any pose.
-    double step = 1.0;
+    // Halve the step until no face folds in any pose. A sliver turns over at any step: if one still folds
+    // at the smallest, its corners stay where they are and the others try again, so that one face does
+    // not hold the whole LOD back.
+    Eigen::VectorXd step_dir = dx;
     bool moved = false;
-    for (int tries = 0; tries < 6 && !moved; ++tries, step *= 0.5) {
-      for (auto vh : lod.vertices()) {
-        const int v = vh.idx();
-        const Eigen::Vector3d p = x[v] + step * dx.segment<3>(3 * v);
-        lod.set_point(vh, SkinnedMesh::Point(p.x(), p.y(), p.z()));
+    for (int pinning = 0; pinning < 4 && !moved; ++pinning) {
+      double step = 1.0;
+      std::vector<SkinnedMesh::FaceHandle> folded;
+      for (int tries = 0; tries < 6 && !moved; ++tries, step *= 0.5) {
+        for (auto vh : lod.vertices()) {
+          const int v = vh.idx();
+          const Eigen::Vector3d p = x[v] + step * step_dir.segment<3>(3 * v);
+          lod.set_point(vh, SkinnedMesh::Point(p.x(), p.y(), p.z()));
+        }
+        std::vector<std::vector<Eigen::Vector3d>> posed_after;
+        for (const Pose& p : poses) posed_after.push_back(skin_positions(lod, p));
+        folded = folding_faces(lod, posed_initial, posed_after);
+        moved = folded.empty();
       }
-      std::vector<std::vector<Eigen::Vector3d>> posed_after;
-      for (const Pose& p : poses) posed_after.push_back(skin_positions(lod, p));
-      moved = !folds(lod, posed_initial, posed_after);
+      for (auto fh : folded)
+        for (auto vh : lod.fv_range(fh)) step_dir.segment<3>(3 * vh.idx()).setZero();
     }
     if (!moved) {
       for (auto vh : lod.vertices())
