@@ -337,12 +337,14 @@ public:
     chosen_v1_ = ci.v1;
     return chosen_valid_;
   }
-  /// The skinned quadric's error of collapsing \p ci with the merged vertex at \p rest with skin \p w.
+  /// The skinned quadric's error of collapsing \p ci with the merged vertex at \p rest with skin \p w: the
+  /// endpoints' summed quadric of each pose at the vertex posed there.
   double error_at(const CollapseInfo& ci, const Eigen::Vector3d& rest, const Influences& w) const {
     double e = 0.0;
     for (int j = 0; j < poses_.n_poses(); ++j) {
-      const Eigen::Vector3d x = poses_.posed_point(rest, w, j);
-      e += poses_.quadric(ci.v0, j)(x) + poses_.quadric(ci.v1, j)(x);
+      PoseQuadric q = poses_.quadric(ci.v0, j);
+      q += poses_.quadric(ci.v1, j);
+      e += q(poses_.posed_point(rest, w, j));
     }
     return std::max(e, 0.0);
   }

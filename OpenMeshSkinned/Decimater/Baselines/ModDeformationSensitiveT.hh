@@ -26,14 +26,10 @@ public:
 
 protected:
   float price(const CollapseInfo& ci) override {
-    const auto& solver = this->solver();
-    double e = 0.0;
-    for (int j = 0; j < solver.n_poses(); ++j) {
-      PoseQuadric q = solver.quadric(ci.v0, j);
-      q += solver.quadric(ci.v1, j);
-      e += q(solver.posed(ci.v1, j));
-    }
-    e = std::max(e, 0.0);
+    // v1 stays where it is, with its skin.
+    const MeshT& mesh = Base::mesh();
+    const double e =
+        this->solver().error_at(ci, to_eigen(mesh.point(ci.v1)), mesh.property(influences_handle(mesh), ci.v1));
     if (e > max_err_ * Base::error_tolerance_factor_) return float(Base::ILLEGAL_COLLAPSE);
     return static_cast<float>(std::min<double>(e, FLT_MAX / 2));
   }
