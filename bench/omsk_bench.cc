@@ -123,6 +123,7 @@ double heldout_rms(const Mesh& original, Mesh lod) {
 bool g_heldout = true;
 bool g_lazy_only = false;
 bool g_classic_only = false;
+bool g_static_only = false;
 int g_threads = 2;
 
 // Each workload is decimated by OpenMesh's DecimaterT and by LazyDecimaterT (one thread, then
@@ -136,6 +137,8 @@ json run_workload(const std::string& name, const Mesh& input, size_t target, Ope
     if (g_heldout) j["heldout_rms_decimatert"] = heldout_rms(input, classic);
     return j;
   }
+  if (g_static_only)  // for profiling the reference alone
+    return {{"workload", name}, {"static_s", time_static<Classic>(input, target)}};
   if (g_lazy_only) {  // for profiling the lazy driver alone
     Mesh lazy = input;
     json counts;
@@ -247,6 +250,7 @@ int main(int argc, char** argv) {
   app.add_flag("!--no-heldout", g_heldout, "Skip the held-out error of the skinned LODs");
   app.add_flag("--lazy-only", g_lazy_only, "Only the skinned modules under LazyDecimaterT on --threads (profiling)");
   app.add_flag("--classic-only", g_classic_only, "Only the skinned modules under OpenMesh's DecimaterT (profiling)");
+  app.add_flag("--static-only", g_static_only, "Only OpenMesh's static modules under its DecimaterT (profiling)");
   std::vector<std::string> write;
   app.add_option("--write", write,
                  "NAME FILE: write a benchmark character as GLB and exit. human (Testwuson subdivided three "

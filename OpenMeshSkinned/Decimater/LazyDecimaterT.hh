@@ -1,6 +1,7 @@
 #pragma once
 /** \file LazyDecimaterT.hh */
 
+#include "OpenMeshSkinned/Decimater/CollapseLegality.hh"
 #include "OpenMeshSkinned/Decimater/DriverHints.hh"
 
 #include <OpenMesh/Tools/Decimater/BaseDecimaterT.hh>
@@ -111,7 +112,7 @@ public:
    *  are not asked about): when it does not, the mesh is as small as its pieces can get by collapses. */
   bool topology_allows_a_collapse() {
     for (auto h : mesh_.halfedges())
-      if (!mesh_.status(mesh_.edge_handle(h)).deleted() && this->is_collapse_legal(CollapseInfo(mesh_, h))) return true;
+      if (!mesh_.status(mesh_.edge_handle(h)).deleted() && collapse_legal(mesh_, CollapseInfo(mesh_, h))) return true;
     return false;
   }
 
@@ -156,7 +157,8 @@ private:
            (!only_selected || mesh_.status(v0).selected());
   }
   // What keeps a direction illegal until its neighbourhood changes; the full topological test
-  // (is_collapse_legal, a quarter of the run) is made when the candidate is popped.
+  // (collapse_legal: BaseDecimaterT::is_collapse_legal, answered without the library's assertions) is made
+  // when the candidate is popped.
   bool may_collapse(HalfedgeHandle h, bool only_selected) const {
     if (!eligible(h, only_selected)) return false;
     const VertexHandle v0 = mesh_.from_vertex_handle(h), v1 = mesh_.to_vertex_handle(h);
@@ -188,7 +190,7 @@ private:
       const HalfedgeHandle h = halfedge_of(slot, dir);
       if (by_edge_ && !may_collapse(h, only_selected)) continue;
       CollapseInfo ci(mesh_, h);
-      if (this->is_collapse_legal(ci) && binary_modules_accept(ci)) return h;
+      if (collapse_legal(mesh_, ci) && binary_modules_accept(ci)) return h;
     }
     return HalfedgeHandle();
   }

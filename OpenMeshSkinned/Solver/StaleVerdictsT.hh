@@ -15,6 +15,8 @@
  *  The order of calls it relies on is listed in SolverModuleT.hh and pinned by test_decimater_contract.
  */
 
+#include "OpenMeshSkinned/Decimater/CollapseLegality.hh"
+
 #include <OpenMesh/Tools/Decimater/CollapseInfoT.hh>
 
 #include <algorithm>
@@ -91,7 +93,7 @@ public:
       if (mesh_.status(mesh_.edge_handle(h)).deleted() || mesh_.from_vertex_handle(h) != z) return;
       if (must_end_next_to_v1 && mesh_.find_halfedge(mesh_.to_vertex_handle(h), v1) == typename Mesh::HalfedgeHandle())
         return;
-      if (folds(CollapseInfo(mesh_, h)) && mesh_.is_collapse_ok(h)) {
+      if (folds(CollapseInfo(mesh_, h)) && link_condition_ok(mesh_, h)) {
         mesh_.status(z).set_locked(true);
         mesh_.property(deferred_, z) = true;
         ++locked;
