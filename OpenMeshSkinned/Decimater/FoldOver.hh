@@ -30,10 +30,11 @@ inline bool face_folds(const Eigen::Vector3d& pc, const Eigen::Vector3d& pa, con
 /// A face that survives a collapse, as vertex indices (center, a, b): the center becomes the merged vertex.
 using RingFace = std::array<int, 3>;
 
-/// The faces around \p v0 and \p v1 that survive collapsing one into the other (those without both).
+/** The faces around \p v0 and \p v1 that survive collapsing one into the other (those without both); with
+ *  a valid \p corner, only those that have it as a corner. */
 template <typename Mesh>
 void surviving_faces(const Mesh& mesh, typename Mesh::VertexHandle v0, typename Mesh::VertexHandle v1,
-                     std::vector<RingFace>& out) {
+                     std::vector<RingFace>& out, typename Mesh::VertexHandle corner = typename Mesh::VertexHandle()) {
   out.clear();
   for (const auto center : {v0, v1}) {
     const auto other = center == v0 ? v1 : v0;
@@ -41,7 +42,8 @@ void surviving_faces(const Mesh& mesh, typename Mesh::VertexHandle v0, typename 
       if (mesh.is_boundary(heh)) continue;
       const auto a = mesh.to_vertex_handle(heh);
       const auto b = mesh.to_vertex_handle(mesh.next_halfedge_handle(heh));
-      if (a != other && b != other) out.push_back({center.idx(), a.idx(), b.idx()});
+      if (a != other && b != other && (!corner.is_valid() || a == corner || b == corner))
+        out.push_back({center.idx(), a.idx(), b.idx()});
     }
   }
 }

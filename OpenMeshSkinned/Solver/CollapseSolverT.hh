@@ -280,8 +280,9 @@ public:
 
   /** Whether collapsing \p ci, with the merged vertex at \p rest with skin \p w, turns any remaining face
    *  around it by more than acos(min_cos), or makes it degenerate, in any pose. */
-  bool flips(const CollapseInfo& ci, const Eigen::Vector3d& rest, const Influences& w, double min_cos) const {
-    surviving_faces(mesh_, ci.v0, ci.v1, ring_faces_);
+  bool flips(const CollapseInfo& ci, const Eigen::Vector3d& rest, const Influences& w, double min_cos,
+             VertexHandle only_faces_at = VertexHandle()) const {
+    surviving_faces(mesh_, ci.v0, ci.v1, ring_faces_, only_faces_at);
     return folds_in_any_pose(
         ring_faces_, poses_.n_poses(), [this](int v, int j) { return poses_.posed_stored(v, j); },
         [&](int j) { return poses_.posed_point(rest, w, j); }, min_cos);
@@ -433,12 +434,16 @@ public:
     // Moved or not, v1 now holds v0's faces: verdicts around it may be stale. (After the stamps: the
     // re-checks must not reuse answers cached for v1 as it was.)
     if (settings_.placement && (settings_.fold_check || settings_.recheck_stale) && !checks_at_pop_)
-      stats_.deferred += stale_.defer_around(v1, [this](const CollapseInfo& zc) {
+      stats_.deferred += stale_.defer_around(v1, [this, v1](const CollapseInfo& zc) {
         if (settings_.fold_check) {
           Eigen::Vector3d rest;
           Influences w;
           placement_of(zc, rest, w);
-          if (flips(zc, rest, w, settings_.fold_cos)) return true;
+          // zc was judged fold-free when priced and after every collapse since: only the faces at v1 can
+          // have changed, unless it ends at v1 (its placement moved with v1), its placement depends on the
+          // ring, or its verdict may have been for a fallback placement (placement_of gives the solved one).
+          const bool placement_moved = zc.v1 == v1 || settings_.fold_fallback || (model_ && model_->ring_dependent());
+          if (flips(zc, rest, w, settings_.fold_cos, placement_moved ? VertexHandle() : v1)) return true;
         }
         if (settings_.recheck_stale)
           for (auto* c : clients_)

@@ -20,6 +20,7 @@
 #include <OpenMesh/Tools/Decimater/CollapseInfoT.hh>
 
 #include <algorithm>
+#include <cstdint>
 #include <vector>
 
 namespace OpenMeshSkinned {
@@ -37,6 +38,8 @@ public:
 
   void prepare() {
     target_.assign(mesh_.n_vertices(), -1);
+    seen_.assign(mesh_.n_vertices(), 0);
+    pass_ = 0;
     sweep_v0_ = best_v0_ = -1;
     if (!mesh_.get_property_handle(deferred_, kDeferredProperty)) mesh_.add_property(deferred_, kDeferredProperty);
     for (auto vh : mesh_.all_vertices()) mesh_.property(deferred_, vh) = false;
@@ -84,14 +87,21 @@ public:
       }
     // A collapse z -> w is judged on the faces around z and around w, so z's stored collapse may be
     // stale when v1 is a neighbour of z, or of w.
+    // Each vertex once per collapse: v1's neighbours first, then theirs (only when their collapse ends
+    // next to v1). The neighbours are listed once instead of searched for each candidate.
+    ++pass_;
+    near_.clear();
+    for (auto z : mesh_.vv_range(v1)) near_.push_back(z);
     size_t locked = 0;
     auto check = [&](VertexHandle z, bool must_end_next_to_v1) {
+      if (seen_[z.idx()] == pass_) return;
+      seen_[z.idx()] = pass_;
       if (z == v1 || mesh_.status(z).locked() || std::find(ring_.begin(), ring_.end(), z) != ring_.end()) return;
       const int t = target_[z.idx()];
       if (t < 0) return;
       const typename Mesh::HalfedgeHandle h(t);
       if (mesh_.status(mesh_.edge_handle(h)).deleted() || mesh_.from_vertex_handle(h) != z) return;
-      if (must_end_next_to_v1 && mesh_.find_halfedge(mesh_.to_vertex_handle(h), v1) == typename Mesh::HalfedgeHandle())
+      if (must_end_next_to_v1 && std::find(near_.begin(), near_.end(), mesh_.to_vertex_handle(h)) == near_.end())
         return;
       if (folds(CollapseInfo(mesh_, h)) && link_condition_ok(mesh_, h)) {
         mesh_.status(z).set_locked(true);
@@ -99,10 +109,9 @@ public:
         ++locked;
       }
     };
-    for (auto z : mesh_.vv_range(v1)) {
-      check(z, false);
+    for (VertexHandle z : near_) check(z, false);
+    for (VertexHandle z : near_)
       for (auto y : mesh_.vv_range(z)) check(y, true);
-    }
     return locked;
   }
 
@@ -121,7 +130,9 @@ private:
   Mesh& mesh_;
   OpenMesh::VPropHandleT<bool> deferred_;
   std::vector<int> target_;  // per vertex: halfedge index of its stored collapse, -1 when none
-  std::vector<VertexHandle> ring_;
+  std::vector<VertexHandle> ring_, near_;
+  std::vector<uint32_t> seen_;  // per vertex: the last defer_around pass that checked it
+  uint32_t pass_ = 0;
   int sweep_v0_ = -1, best_v0_ = -1;
   double best_error_ = 0.0;
 };
