@@ -16,10 +16,16 @@ namespace OpenMeshSkinned {
 inline bool face_folds(const Eigen::Vector3d& pc, const Eigen::Vector3d& pa, const Eigen::Vector3d& pb,
                        const Eigen::Vector3d& p, double min_cos) {
   const Eigen::Vector3d n_old = (pa - pc).cross(pb - pc);
-  const Eigen::Vector3d n_new = (pa - p).cross(pb - p);
+  const Eigen::Vector3d da = pa - p, db = pb - p;
+  const Eigen::Vector3d n_new = da.cross(db);
   const double l2_new = n_new.squaredNorm(), l2_old = n_old.squaredNorm();
-  const double scale = std::max({(pa - p).squaredNorm(), (pb - p).squaredNorm(), (pa - pb).squaredNorm()});
-  if (l2_new <= 1e-20 * scale * scale) return true;  // degenerate
+  // Degenerate: twice the area tiny against the longest edge squared. |pa - pb|^2 <= 4 max(|da|^2, |db|^2),
+  // so the third edge is measured only when the face is near that limit.
+  const double m = std::max(da.squaredNorm(), db.squaredNorm());
+  if (l2_new <= 16e-20 * m * m) {
+    const double scale = std::max(m, (pa - pb).squaredNorm());
+    if (l2_new <= 1e-20 * scale * scale) return true;
+  }
   if (l2_old <= 0.0) return false;
   const double d = n_new.dot(n_old);
   // d < min_cos |n_new||n_old|, without square roots.
