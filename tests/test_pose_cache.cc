@@ -1,6 +1,7 @@
 // Posed positions and per-pose quadrics per vertex (Solver/PoseCacheT.hh).
 #include "helpers.hh"
 
+#include <OpenMeshSkinned/Mesh/LoopSubdivision.hh>
 #include <OpenMeshSkinned/Mesh/Procedural.hh>
 #include <OpenMeshSkinned/Solver/PoseCacheT.hh>
 
@@ -68,4 +69,24 @@ TEST(PoseCache, PositionsKeptInDoublesAreTheComputedOnesAndFollowUpdate) {
   kept.update(b);
   for (auto vh : mesh.vertices())
     for (int j = 0; j < kept.n_poses(); ++j) EXPECT_EQ(kept.posed(vh, j), computed.posed(vh, j));
+}
+
+TEST(PoseCache, TheTablesDoNotDependOnTheThreadCount) {
+  // Testwuson: open borders, folds and seams all get planes; 9 poses shared out unevenly among threads.
+  // Subdivided twice (15k vertices): smaller meshes are posed on fewer threads.
+  Mesh mesh = loop_subdivide(loop_subdivide(omsk_test::load_character("X/Testwuson.X", 8)));
+  ASSERT_GT(mesh.n_vertices(), 3u * 4096u);
+  PoseCacheT<Mesh> one(mesh), three(mesh);
+  one.set_keep_exact(true);
+  three.set_keep_exact(true);
+  one.build(1);
+  three.build(3);
+  ASSERT_EQ(one.n_poses(), three.n_poses());
+  for (auto vh : mesh.vertices())
+    for (int j = 0; j < one.n_poses(); ++j) {
+      ASSERT_EQ(one.posed(vh, j), three.posed(vh, j));
+      ASSERT_EQ(one.quadric(vh, j).A(), three.quadric(vh, j).A()) << "vertex " << vh.idx() << " pose " << j;
+      ASSERT_EQ(one.quadric(vh, j).b(), three.quadric(vh, j).b());
+      ASSERT_EQ(one.quadric(vh, j).c(), three.quadric(vh, j).c());
+    }
 }

@@ -150,7 +150,7 @@ public:
       throw std::length_error("the skinned solver handles skeletons of at most " +
                               std::to_string(EdgeCache::kMaxJoints) + " joints; this one has " +
                               std::to_string(skeleton(mesh_).size()));
-    poses_.build();
+    poses_.build(threads_);
     h_inf_ = poses_.influences();
     cache_.reset(mesh_.n_edges(), mesh_.n_vertices(), answer_capacity());
     resize_cache_ = false;

@@ -14,6 +14,8 @@
 #include "OpenMeshSkinned/Solver/PoseQuadric.hh"
 #include "OpenMeshSkinned/Solver/VertexQuadrics.hh"
 
+#include <algorithm>
+#include <thread>
 #include <vector>
 
 namespace OpenMeshSkinned {
@@ -26,8 +28,8 @@ public:
   explicit PoseCacheT(Mesh& mesh) : mesh_(mesh) {}
 
   /// Reads the example poses ("m:skin_poses"; the bind pose when there are none) and fills both tables
-  /// from the mesh as it is now.
-  void build() {
+  /// from the mesh as it is now, on up to \p threads threads (the tables do not depend on it).
+  void build(int threads = 1) {
     h_inf_ = influences_handle(mesh_);
     poses_ = example_poses(mesh_);
     if (poses_.empty()) poses_.push_back(Pose::identity(skeleton(mesh_).size()));
@@ -36,11 +38,24 @@ public:
     // update() fills the doubles while exact_ holds any: kept only when asked for, after the quadrics.
     posed_.assign(nv * P_, Eigen::Vector3f::Zero());
     exact_.assign(nv * P_, Eigen::Vector3d::Zero());
-    for (auto vh : mesh_.vertices()) update(vh);
+    threads = std::clamp(threads, 1, int(nv / 4096) + 1);
+    {
+      // Each thread poses its own range of vertices.
+      auto pose_range = [&](int t) {
+        for (size_t i = nv * t / threads; i < nv * (t + 1) / threads; ++i) {
+          const VertexHandle vh(static_cast<int>(i));
+          if (!mesh_.has_vertex_status() || !mesh_.status(vh).deleted()) update(vh);
+        }
+      };
+      std::vector<std::thread> pool;
+      for (int t = 1; t < threads; ++t) pool.emplace_back(pose_range, t);
+      pose_range(0);
+      for (auto& th : pool) th.join();
+    }
     quadric_.assign(nv * P_, PoseQuadric{});
     accumulate_quadrics(
         mesh_, P_, [this](VertexHandle v, int j) -> const Eigen::Vector3d& { return exact_[v.idx() * P_ + j]; },
-        [this](VertexHandle v, int j) -> PoseQuadric& { return quadric(v, j); });
+        [this](VertexHandle v, int j) -> PoseQuadric& { return quadric(v, j); }, [](auto) { return 1.0; }, threads);
     if (!keep_exact_) std::vector<Eigen::Vector3d>().swap(exact_);
   }
   /// Keep the posed positions in doubles too (from the next build()).

@@ -8,6 +8,10 @@
 #include "OpenMeshSkinned/Solver/PoseQuadric.hh"
 #include "OpenMeshSkinned/Solver/TruncatedSolve.hh"
 
+#include <algorithm>
+#include <thread>
+#include <vector>
+
 namespace OpenMeshSkinned {
 
 /// Two faces meeting at an edge with normals closer to opposite than this (cosine) fold a sheet back on
@@ -21,19 +25,49 @@ inline constexpr double kFoldEdgeCos = -0.7;
 /// texture's gain (sydney's light stopping point: 2.0 → 0.6% of the texture width) for at most 0.06.
 inline constexpr double kSeamPlaneWeight = 0.25;
 
-/** Adds to \p quadric(v, j) the area-weighted planes of v's faces in configuration j (positions
- *  \p pos(v, j)), for j in [0, n_poses), each also weighted by \p face_weight(face handle), plus, at open
- *  borders, a plane through the border edge perpendicular to its face, weighted by the squared edge length
- *  (and its face's weight), so that borders do not shrink away; the same for each face at an edge where the
- *  sheet folds back on itself (kFoldEdgeCos) in every configuration, and at kSeamPlaneWeight of that for each
- *  face at an attribute seam (attribute_seams()). */
+namespace detail {
+
+/// The (unnormalised) normal of face \p fh in configuration \p j.
+template <typename Mesh, typename Pos>
+Eigen::Vector3d face_normal_in(const Mesh& mesh, typename Mesh::FaceHandle fh, int j, Pos& pos) {
+  auto fv = mesh.cfv_iter(fh);
+  const Eigen::Vector3d f0 = pos(*fv++, j), f1 = pos(*fv++, j), f2 = pos(*fv, j);
+  return (f1 - f0).cross(f2 - f0);
+}
+
+/// Per edge: 0, or the weight of the planes its two faces get (1 where the sheet folds back on itself in
+/// every configuration, kSeamPlaneWeight at an attribute seam).
+template <typename Mesh, typename Pos>
+std::vector<double> sheet_edge_weights(const Mesh& mesh, int n_poses, Pos pos) {
+  const std::vector<char> seams = attribute_seams(mesh);
+  std::vector<double> weight(mesh.n_edges(), 0.0);
+  for (auto eh : mesh.edges()) {
+    if (mesh.is_boundary(eh)) continue;
+    const auto h0 = mesh.halfedge_handle(eh, 0);
+    const auto f0 = mesh.face_handle(h0), f1 = mesh.face_handle(mesh.opposite_halfedge_handle(h0));
+    // Folded in every configuration: a sheet as modelled, not a crease a pose bends into the skin (the
+    // inside of a bent knee), which would pin the joint's geometry. A seam is cut in what the surface shows,
+    // whatever its shape.
+    bool folded = n_poses > 0;
+    for (int j = 0; j < n_poses && folded; ++j) {
+      const Eigen::Vector3d n0 = face_normal_in(mesh, f0, j, pos), n1 = face_normal_in(mesh, f1, j, pos);
+      const double l = n0.norm() * n1.norm();
+      folded = l > 0.0 && n0.dot(n1) < kFoldEdgeCos * l;
+    }
+    if (folded || seams[eh.idx()]) weight[eh.idx()] = folded ? 1.0 : kSeamPlaneWeight;
+  }
+  return weight;
+}
+
+/// accumulate_quadrics() for the configurations [j0, j1), given sheet_edge_weights().
 template <typename Mesh, typename Pos, typename Quadric, typename FaceWeight>
-void accumulate_quadrics(const Mesh& mesh, int n_poses, Pos pos, Quadric quadric, FaceWeight face_weight) {
+void accumulate_configurations(const Mesh& mesh, int j0, int j1, Pos pos, Quadric quadric, FaceWeight face_weight,
+                               const std::vector<double>& sheet_weight) {
   using VH = typename Mesh::VertexHandle;
   for (auto fh : mesh.faces()) {
     auto fv = mesh.cfv_iter(fh);
     const VH a = *fv++, b = *fv++, c = *fv;
-    for (int j = 0; j < n_poses; ++j) {
+    for (int j = j0; j < j1; ++j) {
       const Eigen::Vector3d pa = pos(a, j), pb = pos(b, j), pc = pos(c, j);
       Eigen::Vector3d n = (pb - pa).cross(pc - pa);
       const double len = n.norm();
@@ -45,11 +79,6 @@ void accumulate_quadrics(const Mesh& mesh, int n_poses, Pos pos, Quadric quadric
       quadric(c, j) += q;
     }
   }
-  auto face_normal = [&](typename Mesh::FaceHandle fh, int j) {
-    auto fv = mesh.cfv_iter(fh);
-    const Eigen::Vector3d f0 = pos(*fv++, j), f1 = pos(*fv++, j), f2 = pos(*fv, j);
-    return Eigen::Vector3d((f1 - f0).cross(f2 - f0));
-  };
   // The plane through the edge (a, b) of face fh, perpendicular to the face.
   auto edge_plane = [&](VH a, VH b, typename Mesh::FaceHandle fh, const Eigen::Vector3d& face_n, int j,
                         double w = 1.0) {
@@ -66,30 +95,44 @@ void accumulate_quadrics(const Mesh& mesh, int n_poses, Pos pos, Quadric quadric
     if (!mesh.is_boundary(heh)) continue;
     const auto fh = mesh.face_handle(mesh.opposite_halfedge_handle(heh));
     const VH a = mesh.from_vertex_handle(heh), b = mesh.to_vertex_handle(heh);
-    for (int j = 0; j < n_poses; ++j) edge_plane(a, b, fh, face_normal(fh, j), j);
+    for (int j = j0; j < j1; ++j) edge_plane(a, b, fh, face_normal_in(mesh, fh, j, pos), j);
   }
-  const std::vector<char> seams = attribute_seams(mesh);
   for (auto eh : mesh.edges()) {
-    if (mesh.is_boundary(eh)) continue;
+    const double w = sheet_weight[eh.idx()];
+    if (w == 0.0) continue;
     const auto h0 = mesh.halfedge_handle(eh, 0);
     const auto f0 = mesh.face_handle(h0), f1 = mesh.face_handle(mesh.opposite_halfedge_handle(h0));
     const VH a = mesh.from_vertex_handle(h0), b = mesh.to_vertex_handle(h0);
-    // Folded in every configuration: a sheet as modelled, not a crease a pose bends into the skin (the
-    // inside of a bent knee), which would pin the joint's geometry. A seam is cut in what the surface shows,
-    // whatever its shape.
-    bool folded = n_poses > 0;
-    for (int j = 0; j < n_poses && folded; ++j) {
-      const Eigen::Vector3d n0 = face_normal(f0, j), n1 = face_normal(f1, j);
-      const double l = n0.norm() * n1.norm();
-      folded = l > 0.0 && n0.dot(n1) < kFoldEdgeCos * l;
-    }
-    if (!folded && !seams[eh.idx()]) continue;
-    const double w = folded ? 1.0 : kSeamPlaneWeight;
-    for (int j = 0; j < n_poses; ++j) {
-      edge_plane(a, b, f0, face_normal(f0, j), j, w);
-      edge_plane(a, b, f1, face_normal(f1, j), j, w);
+    for (int j = j0; j < j1; ++j) {
+      edge_plane(a, b, f0, face_normal_in(mesh, f0, j, pos), j, w);
+      edge_plane(a, b, f1, face_normal_in(mesh, f1, j, pos), j, w);
     }
   }
+}
+
+}  // namespace detail
+
+/** Adds to \p quadric(v, j) the area-weighted planes of v's faces in configuration j (positions
+ *  \p pos(v, j)), for j in [0, n_poses), each also weighted by \p face_weight(face handle), plus, at open
+ *  borders, a plane through the border edge perpendicular to its face, weighted by the squared edge length
+ *  (and its face's weight), so that borders do not shrink away; the same for each face at an edge where the
+ *  sheet folds back on itself (kFoldEdgeCos) in every configuration, and at kSeamPlaneWeight of that for each
+ *  face at an attribute seam (attribute_seams()). With \p threads > 1 the configurations are shared out among
+ *  threads (\p pos and \p quadric are then called concurrently for different j); each quadric gets the same
+ *  planes in the same order whatever the thread count. */
+template <typename Mesh, typename Pos, typename Quadric, typename FaceWeight>
+void accumulate_quadrics(const Mesh& mesh, int n_poses, Pos pos, Quadric quadric, FaceWeight face_weight,
+                         int threads = 1) {
+  const std::vector<double> sheet_weight = detail::sheet_edge_weights(mesh, n_poses, pos);
+  threads = std::clamp(threads, 1, std::max(1, n_poses));
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t)
+    pool.emplace_back([&, t] {
+      detail::accumulate_configurations(mesh, n_poses * t / threads, n_poses * (t + 1) / threads, pos, quadric,
+                                        face_weight, sheet_weight);
+    });
+  detail::accumulate_configurations(mesh, 0, n_poses / threads, pos, quadric, face_weight, sheet_weight);
+  for (auto& th : pool) th.join();
 }
 
 /// accumulate_quadrics() with every face weighing 1.
