@@ -419,6 +419,10 @@ public:
     cache_.touch(v0.idx());
     if (model_ && model_->ring_dependent())
       for (auto v : mesh_.vv_range(v1)) cache_.touch(v.idx());
+    if (ahead_) {
+      // The neighbours' quadrics are read below one after another: ask for all of them at once.
+      for (auto v : mesh_.vv_range(v1)) poses_.prefetch_quadrics(v);
+    }
     if (ahead_)
       for (auto h : mesh_.voh_range(v1)) {
         const int a = std::min(v1.idx(), mesh_.to_vertex_handle(h).idx());
