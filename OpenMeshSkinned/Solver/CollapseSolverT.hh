@@ -446,8 +446,8 @@ public:
           // zc was judged fold-free when priced and after every collapse since: only the faces at v1 can
           // have changed, unless it ends at v1 (its placement moved with v1), its placement depends on the
           // ring, or its verdict may have been for a fallback placement (placement_of gives the solved one).
-          const bool placement_moved = zc.v1 == v1 || settings_.fold_fallback || (model_ && model_->ring_dependent());
-          if (flips(zc, rest, w, settings_.fold_cos, placement_moved ? VertexHandle() : v1)) return true;
+          const bool all_faces = zc.v1 == v1 || settings_.fold_fallback || (model_ && model_->ring_dependent());
+          if (flips(zc, rest, w, settings_.fold_cos, all_faces ? VertexHandle() : v1)) return true;
         }
         if (settings_.recheck_stale)
           for (auto* c : clients_)
