@@ -22,6 +22,7 @@
 #include "OpenMeshSkinned/Solver/SolveAhead.hh"
 #include "OpenMeshSkinned/Solver/SolverSettings.hh"
 #include "OpenMeshSkinned/Solver/StaleVerdictsT.hh"
+#include "OpenMeshSkinned/Solver/Threads.hh"
 
 #include <OpenMesh/Tools/Decimater/CollapseInfoT.hh>
 
@@ -249,10 +250,7 @@ public:
         }
       counts[t] = weights.stats();
     };
-    std::vector<std::thread> pool;
-    for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
-    work(0);
-    for (auto& th : pool) th.join();
+    run_on_threads(threads, work);
     stats_.solves += todo.size();
     for (const auto& c : counts) {
       batch_weights_.solves += c.solves;
@@ -422,8 +420,6 @@ public:
     if (ahead_) {
       // The neighbours' quadrics are read below one after another: ask for all of them at once.
       for (auto v : mesh_.vv_range(v1)) poses_.prefetch_quadrics(v);
-    }
-    if (ahead_)
       for (auto h : mesh_.voh_range(v1)) {
         const int a = std::min(v1.idx(), mesh_.to_vertex_handle(h).idx());
         const int b = std::max(v1.idx(), mesh_.to_vertex_handle(h).idx());
@@ -434,6 +430,7 @@ public:
           ahead_->submit(mesh_.property(h_inf_, VertexHandle(a)), mesh_.property(h_inf_, VertexHandle(b)));
         }
       }
+    }
     for (auto* c : clients_) c->collapse_applied(ci);
     // Moved or not, v1 now holds v0's faces: verdicts around it may be stale. (After the stamps: the
     // re-checks must not reuse answers cached for v1 as it was.)

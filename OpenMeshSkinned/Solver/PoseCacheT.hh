@@ -12,10 +12,10 @@
 #include "OpenMeshSkinned/Skin/LinearBlendSkinning.hh"
 #include "OpenMeshSkinned/Skin/SkinProperties.hh"
 #include "OpenMeshSkinned/Solver/PoseQuadric.hh"
+#include "OpenMeshSkinned/Solver/Threads.hh"
 #include "OpenMeshSkinned/Solver/VertexQuadrics.hh"
 
 #include <algorithm>
-#include <thread>
 #include <vector>
 
 namespace OpenMeshSkinned {
@@ -39,19 +39,12 @@ public:
     posed_.assign(nv * P_, Eigen::Vector3f::Zero());
     exact_.assign(nv * P_, Eigen::Vector3d::Zero());
     threads = std::clamp(threads, 1, int(nv / 4096) + 1);
-    {
-      // Each thread poses its own range of vertices.
-      auto pose_range = [&](int t) {
-        for (size_t i = nv * t / threads; i < nv * (t + 1) / threads; ++i) {
-          const VertexHandle vh(static_cast<int>(i));
-          if (!mesh_.has_vertex_status() || !mesh_.status(vh).deleted()) update(vh);
-        }
-      };
-      std::vector<std::thread> pool;
-      for (int t = 1; t < threads; ++t) pool.emplace_back(pose_range, t);
-      pose_range(0);
-      for (auto& th : pool) th.join();
-    }
+    run_on_threads(threads, [&](int t) {  // each thread poses its own range of vertices
+      for (size_t i = nv * t / threads; i < nv * (t + 1) / threads; ++i) {
+        const VertexHandle vh(static_cast<int>(i));
+        if (!mesh_.has_vertex_status() || !mesh_.status(vh).deleted()) update(vh);
+      }
+    });
     quadric_.assign(nv * P_, PoseQuadric{});
     accumulate_quadrics(
         mesh_, P_, [this](VertexHandle v, int j) -> const Eigen::Vector3d& { return exact_[v.idx() * P_ + j]; },

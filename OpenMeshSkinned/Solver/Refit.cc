@@ -6,6 +6,7 @@
 #include "OpenMeshSkinned/Skin/LinearBlendSkinning.hh"
 #include "OpenMeshSkinned/Skin/Morph.hh"
 #include "OpenMeshSkinned/Skin/SkinProperties.hh"
+#include "OpenMeshSkinned/Solver/Threads.hh"
 
 #include <Eigen/Sparse>
 
@@ -14,7 +15,6 @@
 #include <atomic>
 #include <cmath>
 #include <memory>
-#include <thread>
 
 namespace OpenMeshSkinned {
 
@@ -114,13 +114,9 @@ struct Hit {
 template <typename Work>
 void for_each_pose(size_t n, int threads, Work work) {
   std::atomic<size_t> next{0};
-  auto run = [&] {
+  run_on_threads(std::min<int>(threads, int(n)), [&](int) {
     for (size_t j = next++; j < n; j = next++) work(j);
-  };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < std::min<int>(threads, int(n)); ++t) pool.emplace_back(run);
-  run();
-  for (auto& th : pool) th.join();
+  });
 }
 
 // The faces that turn by more than 90 degrees, in some pose, between \p a and \p b (posed positions).

@@ -6,10 +6,10 @@
 
 #include "OpenMeshSkinned/Mesh/Seams.hh"
 #include "OpenMeshSkinned/Solver/PoseQuadric.hh"
+#include "OpenMeshSkinned/Solver/Threads.hh"
 #include "OpenMeshSkinned/Solver/TruncatedSolve.hh"
 
 #include <algorithm>
-#include <thread>
 #include <vector>
 
 namespace OpenMeshSkinned {
@@ -125,14 +125,10 @@ void accumulate_quadrics(const Mesh& mesh, int n_poses, Pos pos, Quadric quadric
                          int threads = 1) {
   const std::vector<double> sheet_weight = detail::sheet_edge_weights(mesh, n_poses, pos);
   threads = std::clamp(threads, 1, std::max(1, n_poses));
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t)
-    pool.emplace_back([&, t] {
-      detail::accumulate_configurations(mesh, n_poses * t / threads, n_poses * (t + 1) / threads, pos, quadric,
-                                        face_weight, sheet_weight);
-    });
-  detail::accumulate_configurations(mesh, 0, n_poses / threads, pos, quadric, face_weight, sheet_weight);
-  for (auto& th : pool) th.join();
+  run_on_threads(threads, [&](int t) {
+    detail::accumulate_configurations(mesh, n_poses * t / threads, n_poses * (t + 1) / threads, pos, quadric,
+                                      face_weight, sheet_weight);
+  });
 }
 
 /// accumulate_quadrics() with every face weighing 1.
