@@ -10,6 +10,7 @@
 #include <OpenMeshSkinned/Mesh/LoopSubdivision.hh>
 #include <OpenMeshSkinned/Mesh/Procedural.hh>
 #include <OpenMeshSkinned/Skin/PoseSchedule.hh>
+#include <OpenMeshSkinned/Solver/HugePages.hh>
 
 #include <OpenMesh/Tools/Decimater/DecimaterT.hh>
 #include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
@@ -238,6 +239,9 @@ json cap_strategy(const std::string& file, int cap, OpenMeshSkinned::CapStrategy
 }  // namespace
 
 int main(int argc, char** argv) {
+  // As the CLI runs (every run in this process alike, the static reference too);
+  // GLIBC_TUNABLES=glibc.malloc.hugetlb=0 measures without.
+  OpenMeshSkinned::relaunch_with_huge_pages(argv);
   CLI::App app{"omsk-bench: skinned vs static decimation on the papers' workloads (JSON lines on stdout)"};
   std::string workload;
   bool all = false;

@@ -3,6 +3,8 @@
 #include "Options.hh"
 #include "Run.hh"
 
+#include <OpenMeshSkinned/Solver/HugePages.hh>
+
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -22,6 +24,8 @@ std::string method_help() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Large characters decimate markedly faster with the heap on huge pages (see HugePages.hh).
+  OpenMeshSkinned::relaunch_with_huge_pages(argv);
   CLI::App app{
       "skinned-decimate: LODs of an animated character (skinned, or animated without a skeleton) that stay right "
       "in poses never seen.\n"

@@ -1,0 +1,30 @@
+#include "OpenMeshSkinned/Solver/HugePages.hh"
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <cstring>
+
+namespace OpenMeshSkinned {
+
+std::string tunables_with_huge_pages(const char* current) {
+  const std::string add = "glibc.malloc.hugetlb=1";
+  if (!current || !*current) return add;
+  if (std::strstr(current, "glibc.malloc.hugetlb")) return {};
+  return std::string(current) + ":" + add;
+}
+
+void relaunch_with_huge_pages(char** argv) {
+#if defined(__linux__) && defined(__GLIBC__)
+  if (!argv || !argv[0]) return;
+  const std::string value = tunables_with_huge_pages(std::getenv("GLIBC_TUNABLES"));
+  if (value.empty()) return;
+  // Set before the exec, so the relaunched program finds it and does not relaunch again.
+  if (::setenv("GLIBC_TUNABLES", value.c_str(), 1) != 0) return;
+  ::execv("/proc/self/exe", argv);
+#else
+  (void)argv;
+#endif
+}
+
+}  // namespace OpenMeshSkinned
