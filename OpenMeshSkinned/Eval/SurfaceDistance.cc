@@ -71,14 +71,28 @@ struct MeasuredSurface::Impl {
   std::vector<Point> samples;
 };
 
-MeasuredSurface::MeasuredSurface(const TriangleSoup& soup, size_t n, uint64_t seed, bool accelerate)
+MeasuredSurface::MeasuredSurface(const TriangleSoup& soup, size_t n, uint64_t seed, size_t hint_points)
     : impl_(std::make_unique<Impl>()) {
   std::mt19937_64 rng(seed);
   impl_->samples = samples(soup, n, rng);
   impl_->triangles = to_cgal(soup);
   if (impl_->triangles.empty()) return;
   impl_->tree = std::make_unique<Tree>(impl_->triangles.begin(), impl_->triangles.end());
-  if (accelerate) impl_->tree->accelerate_distance_queries();
+  const size_t nt = impl_->triangles.size();
+  if (hint_points >= nt) {
+    impl_->tree->accelerate_distance_queries();
+  } else if (hint_points == 0) {
+    impl_->tree->do_not_accelerate_distance_queries();  // else CGAL builds the full tree at the first query
+  } else {
+    const size_t stride = (nt + hint_points - 1) / hint_points;
+    std::vector<Tree::Point_and_primitive_id> hints;
+    hints.reserve(nt / stride + 1);
+    for (size_t i = 0; i < nt; i += stride) {
+      const Iterator it = impl_->triangles.begin() + i;
+      hints.emplace_back(it->vertex(0), it);
+    }
+    impl_->tree->accelerate_distance_queries(hints.begin(), hints.end());
+  }
 }
 MeasuredSurface::~MeasuredSurface() = default;
 

@@ -33,9 +33,14 @@ struct SurfaceDistance {
  *  is built once per frame and measured against every LOD and method; safe to share between threads. */
 class MeasuredSurface {
 public:
-  /// \p accelerate: build CGAL's search tree for fast distance queries (worth it for many queries; a few
-  /// thousand queries on a large surface are cheaper without).
-  MeasuredSurface(const TriangleSoup& soup, size_t samples, uint64_t seed, bool accelerate = true);
+  /// Every triangle gives a start point to CGAL's search for the nearest point (the default).
+  static constexpr size_t kAllHintPoints = static_cast<size_t>(-1);
+  /** \p hint_points: how many of the triangles, evenly strided, give a start point to the search (CGAL's
+   *  kd-tree of hints, built here). Many queries pay for a start point on every triangle; a few thousand
+   *  queries on a large surface are answered as fast from a few thousand start points, and the tree of all
+   *  of them would cost more than the queries. 0: none (queries without a hint start from the first
+   *  triangle). The nearest points found do not depend on it. */
+  MeasuredSurface(const TriangleSoup& soup, size_t samples, uint64_t seed, size_t hint_points = kAllHintPoints);
   ~MeasuredSurface();
   MeasuredSurface(MeasuredSurface&&) noexcept;
   MeasuredSurface& operator=(MeasuredSurface&&) noexcept;

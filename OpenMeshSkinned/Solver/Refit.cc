@@ -180,7 +180,9 @@ RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const
         sp.push_back((posed.points[T[0]] + posed.points[T[1]] + posed.points[T[2]]) / 3.0);
       }
     }
-    const MeasuredSurface surface(posed, 0, 1, /*accelerate=*/false);
+    // A few start points per LOD vertex: the tree of one per triangle of a large original cost more than
+    // the LOD's queries.
+    const MeasuredSurface surface(posed, 0, 1, std::max<size_t>(1024, 4 * lod.n_vertices()));
     const std::vector<Eigen::Vector3d> y = skin_positions(lod, poses[j]);
     for (auto vh : lod.vertices()) {
       int tri = -1;
@@ -212,7 +214,7 @@ RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const
       const TriangleSoup lsoup = posed_soup(lod, poses[j]);
       // After the first round, last round's triangle starts each search (the LOD moved little since): the
       // search tree's own start points are not needed.
-      const MeasuredSurface lsurf(lsoup, 0, 1, /*accelerate=*/round == 0);
+      const MeasuredSurface lsurf(lsoup, 0, 1, round == 0 ? MeasuredSurface::kAllHintPoints : 0);
       hits[j].resize(samples.size(), Hit{-1, {-1, -1, -1}, Eigen::Vector3d::Zero()});
       for (size_t s = 0; s < samples.size(); ++s) {
         Hit& h = hits[j][s];
