@@ -6,7 +6,9 @@
 #include "OpenMeshSkinned/IO/ImportGeometry.hh"
 #include "OpenMeshSkinned/IO/ImportMaterial.hh"
 #include "OpenMeshSkinned/IO/ImportScene.hh"
+#include "OpenMeshSkinned/IO/InputCheck.hh"
 #include "OpenMeshSkinned/IO/IsolatedImport.hh"
+#include "OpenMeshSkinned/IO/PrintableText.hh"
 #include "OpenMeshSkinned/IO/ReaderLog.hh"
 #include "OpenMeshSkinned/Mesh/NonManifold.hh"
 #include "OpenMeshSkinned/Skin/Morph.hh"
@@ -35,16 +37,14 @@ using namespace detail;
 const aiScene* read_scene(Assimp::Importer& importer, const std::string& path, const std::string& read_path,
                           int frame) {
   if (frame >= 0) importer.SetPropertyInteger(AI_CONFIG_IMPORT_GLOBAL_KEYFRAME, frame);
+  // FBX pivots folded into their nodes: the skeleton is the file's own bones, without the reader's
+  // "$AssimpFbx$" helper nodes (which no engine sharing a skeleton across LODs, or retargeting by name, knows).
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_FBX_PRESERVE_PIVOTS, false);
   // No PreTransformVertices or OptimizeGraph: both would destroy the skeleton we need.
   const unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
   const aiScene* scene = importer.ReadFile(read_path, flags);
   if (!scene) {
-    std::string msg = importer.GetErrorString();
-    while (!msg.empty() && (msg.back() == '\n' || msg.back() == '\r')) msg.pop_back();
-    for (char& ch : msg)
-      if (static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f) ch = ' ';
-    if (msg.size() > 240) msg = msg.substr(0, 240) + " [...]";
-    throw IOError(path + ": cannot be read: " + msg);
+    throw IOError(path + ": cannot be read: " + printable_line(importer.GetErrorString()));
   }
   if (!scene->mRootNode || scene->mNumMeshes == 0) throw IOError(path + ": contains no mesh");
   // Skeleton-only files (BVH, MD5 anim) get a stand-in mesh of boxes around the bones from assimp.
@@ -201,7 +201,7 @@ ImportReport import_skinned(const std::string& path, SkinnedMesh& mesh, const Im
 ImportReport detail::import_scene(const std::string& path, const std::string& read_path, SkinnedMesh& mesh,
                                   const ImportOptions& opt) {
   namespace fs = std::filesystem;
-  check_gltf_weights(read_path, path);
+  check_gltf_values(read_path, path);
   const ReaderLog log;
   Assimp::Importer importer;
   const aiScene* scene = read_scene(importer, path, read_path, opt.frame);
@@ -245,6 +245,7 @@ ImportReport detail::import_scene(const std::string& path, const std::string& re
   read_clips(scene, sn, joints, instances, target_base, mesh, rep.warnings);
   rep.clips = clips(mesh).size();
   example_poses(mesh) = {Pose::identity(skeleton(mesh).size())};
+  check_input(mesh, path, rep.warnings);
   for (const std::string& m : log.data_loss()) rep.warnings.push_back("the reader dropped data: " + m);
   try {
     ValidationOptions vo;

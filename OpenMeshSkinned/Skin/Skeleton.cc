@@ -36,6 +36,11 @@ Pose Pose::identity(int n, std::string label) {
   return p;
 }
 
+bool Pose::finite() const {
+  return std::all_of(joint.begin(), joint.end(), [](const Affine3& m) { return m.allFinite(); }) &&
+         std::all_of(morph_weights.begin(), morph_weights.end(), [](double w) { return std::isfinite(w); });
+}
+
 namespace {
 
 // Index i such that times[i] <= t < times[i+1], and the blend factor between them.

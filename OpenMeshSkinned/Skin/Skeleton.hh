@@ -78,6 +78,8 @@ struct Pose {
 
   /// The bind pose of a skeleton with \p n joints (all identities).
   static Pose identity(int n, std::string label = "bind");
+  /// Every matrix entry and morph weight finite (keys of huge values can overflow when composed).
+  bool finite() const;
 };
 
 /// A morph target (blend shape): its per-vertex offsets live in "v:morph_deltas".
