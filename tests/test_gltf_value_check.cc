@@ -18,19 +18,40 @@ using namespace OpenMeshSkinned;
 namespace {
 const std::string simple_skin = std::string(OMSK_TEST_MODELS) + "/glTF2/simple_skin/simple_skin.gltf";
 
-// simple_skin with weight \p c of vertex \p v set to \p value, as .gltf with inline buffers.
-fs::path with_weight(float value, size_t v, size_t c) {
+// simple_skin changed by \p edit, as .gltf with inline buffers.
+template <typename Edit>
+fs::path edited(Edit edit) {
   const fs::path d = fs::temp_directory_path() / ("omsk_valuecheck_" + std::to_string(::getpid()));
   fs::create_directories(d);
   tinygltf::Model m = omsk_spec::load(simple_skin);
-  const auto& acc = m.accessors[m.meshes[0].primitives[0].attributes.at("WEIGHTS_0")];
-  const auto& view = m.bufferViews[acc.bufferView];
-  const size_t stride = view.byteStride ? view.byteStride : 16;
-  std::memcpy(m.buffers[view.buffer].data.data() + view.byteOffset + acc.byteOffset + v * stride + c * 4, &value, 4);
+  edit(m);
   const fs::path out = d / "w.gltf";
   tinygltf::TinyGLTF w;
   EXPECT_TRUE(w.WriteGltfSceneToFile(&m, out.string(), true, true, true, false));
   return out;
+}
+
+// Component \p c of vertex \p v of attribute \p name (T: its component type) set to \p value.
+template <typename T>
+fs::path with_value(const char* name, T value, size_t v, size_t c) {
+  return edited([&](tinygltf::Model& m) {
+    const auto& acc = m.accessors[m.meshes[0].primitives[0].attributes.at(name)];
+    const auto& view = m.bufferViews[acc.bufferView];
+    const size_t stride = view.byteStride ? view.byteStride : 4 * sizeof(T);
+    std::memcpy(m.buffers[view.buffer].data.data() + view.byteOffset + acc.byteOffset + v * stride + c * sizeof(T),
+                &value, sizeof(T));
+  });
+}
+
+fs::path with_weight(float value, size_t v, size_t c) { return with_value("WEIGHTS_0", value, v, c); }
+
+std::string message(const fs::path& f) {
+  try {
+    check_gltf_values(f.string(), "shown.gltf");
+  } catch (const IOError& e) {
+    return e.what();
+  }
+  return "accepted";
 }
 }  // namespace
 
@@ -38,7 +59,7 @@ TEST(GltfValueCheck, NonFiniteWeightIsAnErrorNamingTheVertex) {
   for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
     const auto f = with_weight(bad, 2, 0);
     try {
-      check_gltf_weights(f.string(), "shown.gltf");
+      check_gltf_values(f.string(), "shown.gltf");
       FAIL() << "accepted a non-finite weight";
     } catch (const IOError& e) {
       EXPECT_STREQ(e.what(), "shown.gltf: vertex 2 of mesh 0 (\"\") has a non-finite weight in WEIGHTS_0");
@@ -49,7 +70,35 @@ TEST(GltfValueCheck, NonFiniteWeightIsAnErrorNamingTheVertex) {
 }
 
 TEST(GltfValueCheck, FiniteWeightsAndOtherFormatsPass) {
-  EXPECT_NO_THROW(check_gltf_weights(with_weight(0.5f, 2, 0).string(), "x"));
-  EXPECT_NO_THROW(check_gltf_weights(simple_skin, "x"));
-  EXPECT_NO_THROW(check_gltf_weights(std::string(OMSK_TEST_MODELS) + "/X/Testwuson.X", "x"));
+  EXPECT_NO_THROW(check_gltf_values(with_weight(0.5f, 2, 0).string(), "x"));
+  EXPECT_NO_THROW(check_gltf_values(simple_skin, "x"));
+  EXPECT_NO_THROW(check_gltf_values(std::string(OMSK_TEST_MODELS) + "/X/Testwuson.X", "x"));
+}
+
+TEST(GltfValueCheck, AWeightedJointOutsideTheSkinIsAnErrorNamingIt) {
+  // simple_skin's skin has 2 joints; vertex 4 weighs its second joint by 0.5.
+  for (uint16_t bad : {uint16_t(7), uint16_t(60000)}) {
+    const auto f = with_value<uint16_t>("JOINTS_0", bad, 4, 1);
+    EXPECT_EQ(message(f), "shown.gltf: vertex 4 of mesh 0 (\"\") names joint " + std::to_string(bad) +
+                              " in JOINTS_0, but skin 0 (\"\") has 2 joints");
+    SkinnedMesh mesh;
+    EXPECT_THROW(import_skinned(f.string(), mesh), IOError);
+  }
+  // Vertex 0 gives its second joint no weight: what that index says does not matter to any reader.
+  EXPECT_EQ(message(with_value<uint16_t>("JOINTS_0", 7, 0, 1)), "accepted");
+}
+
+TEST(GltfValueCheck, AnAccessorClaimingMoreThanItsViewHoldsIsAnError) {
+  // A count of 2^31 once made the weight check read the rest of the buffer and blame "vertex 160".
+  const auto f = edited([](tinygltf::Model& m) { m.accessors[3].count = size_t(1) << 31; });
+  EXPECT_EQ(message(f),
+            "shown.gltf: accessor 3 (WEIGHTS_0 of mesh 0 (\"\")) claims 2147483648 elements of 16 bytes from byte 160, "
+            "more than its buffer view's 320 bytes hold");
+  SkinnedMesh mesh;
+  try {
+    import_skinned(f.string(), mesh);
+    FAIL() << "accepted";
+  } catch (const IOError& e) {
+    EXPECT_EQ(std::string(e.what()).find(f.string() + ": accessor 3 (WEIGHTS_0"), 0u) << e.what();
+  }
 }
