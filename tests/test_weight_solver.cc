@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <random>
 
 using namespace OpenMeshSkinned;
@@ -139,5 +141,28 @@ TEST(WeightSolver, HugeNearlySingularGramMatricesStillGiveWeightsSummingToOne) {
     ws.solve(H, start, a);
     ASSERT_NEAR(a.sum(), 1.0, 1e-9) << "trial " << t;
     expect_feasible(a, m);
+  }
+}
+
+TEST(WeightSolver, ANonFiniteProblemIsRefusedAtOnceWithTheStartsWeights) {
+  // A NaN or overflowed Gram matrix (a corrupt key, huge coordinates) has no answer: the solve must end at
+  // once with an infinite error (the collapse is refused) and still leave a valid skin behind, capped.
+  std::mt19937 rng(11);
+  for (double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    for (CapStrategy strategy : {CapStrategy::Greedy, CapStrategy::TopN}) {
+      WeightSolver ws;
+      const int m = 8;
+      Mat H = random_gram(rng, m, 3);
+      H(2, 5) = H(5, 2) = bad;
+      Vec start(m), a;
+      start << 0.3, 0.2, 0.15, 0.1, 0.1, 0.05, 0.05, 0.05;
+      EXPECT_TRUE(std::isinf(ws.solve(H, start, a)));
+      EXPECT_TRUE(std::isinf(ws.solve_capped(H, start, 4, strategy, a)));
+      expect_feasible(a, 4);
+      EXPECT_GT(a[0], a[3]);  // the start's heaviest four, in their proportions
+      EXPECT_NEAR(a[0] / a[1], 1.5, 1e-12);
+      EXPECT_EQ(ws.stats().ceres_calls, 0u);
+      EXPECT_GE(ws.stats().non_finite, 2u);
+    }
   }
 }

@@ -252,11 +252,7 @@ public:
     };
     run_on_threads(threads, work);
     stats_.solves += todo.size();
-    for (const auto& c : counts) {
-      batch_weights_.solves += c.solves;
-      batch_weights_.kkt_feasible += c.kkt_feasible;
-      batch_weights_.ceres_calls += c.ceres_calls;
-    }
+    for (const auto& c : counts) batch_weights_ += c;
   }
 
   /** Under a driver that asks binary modules at pop time, with \p threads > 1: a worker thread solves the
@@ -269,10 +265,7 @@ public:
   void stop_solving_ahead() {
     if (!ahead_) return;
     ahead_->stop();
-    const WeightSolverStats& w = ahead_->worker_stats();
-    batch_weights_.solves += w.solves;
-    batch_weights_.kkt_feasible += w.kkt_feasible;
-    batch_weights_.ceres_calls += w.ceres_calls;
+    batch_weights_ += ahead_->worker_stats();
     ahead_.reset();
   }
 
@@ -471,9 +464,7 @@ public:
   CollapseSolverStats stats() const {
     CollapseSolverStats s = stats_;
     s.weights = weights_.stats();
-    s.weights.solves += batch_weights_.solves;
-    s.weights.kkt_feasible += batch_weights_.kkt_feasible;
-    s.weights.ceres_calls += batch_weights_.ceres_calls;
+    s.weights += batch_weights_;
     return s;
   }
   WeightSolver& weight_solver() { return weights_; }

@@ -16,6 +16,7 @@
 #include "OpenMeshSkinned/Solver/VertexQuadrics.hh"
 
 #include <algorithm>
+#include <stdexcept>
 #include <vector>
 
 namespace OpenMeshSkinned {
@@ -33,6 +34,10 @@ public:
     h_inf_ = influences_handle(mesh_);
     poses_ = example_poses(mesh_);
     if (poses_.empty()) poses_.push_back(Pose::identity(skeleton(mesh_).size()));
+    // Every solve downstream assumes finite poses: a NaN would never converge.
+    for (const Pose& p : poses_)
+      if (!p.finite())
+        throw std::invalid_argument("example pose \"" + p.label + "\" has a non-finite transform or morph weight");
     P_ = static_cast<int>(poses_.size());
     const size_t nv = mesh_.n_vertices();
     // update() fills the doubles while exact_ holds any: kept only when asked for, after the quadrics.

@@ -4,6 +4,7 @@
 #include "OpenMeshSkinned/Solver/TruncatedSolve.hh"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 
@@ -75,6 +76,13 @@ double alternate_fixed_support(const EdgeProblem& p, const JointQuadrics& g, con
   return JointQuadrics::energy(g.blend(a), v);
 }
 
+[[maybe_unused]] bool transforms_finite(const EdgeProblem& p) {
+  for (int j = 0; j < p.poses; ++j)
+    for (int k = 0; k < p.support; ++k)
+      if (!p.M(j, k).allFinite()) return false;
+  return true;
+}
+
 Influences to_influences(const EdgeProblem& p, const WeightSolver::Vector& a) {
   Influences out;
   for (int k = 0; k < p.support; ++k)
@@ -123,6 +131,9 @@ bool skinned_vertex_step(const Eigen::Matrix4d& c, const Eigen::Vector3d& ref, E
 }
 
 void solve_collapse(const EdgeProblem& p, const SolveSettings& s, WeightSolver& weights, CollapseResult& out) {
+  // PoseCacheT refuses non-finite poses: one here is a bug upstream. Finite poses can still overflow the
+  // quadrics of huge coordinates; the weight solve refuses those (an infinite error: no collapse).
+  assert(transforms_finite(p));
   thread_local JointQuadrics g;  // 8 KB: not on every call's stack, not shared between threads
   g.build(p);
   WeightSolver::Vector a = p.start;
@@ -144,6 +155,7 @@ void solve_collapse(const EdgeProblem& p, const SolveSettings& s, WeightSolver& 
 }
 
 Influences reduce_influences(const EdgeProblem& p, const SolveSettings& s, WeightSolver& weights) {
+  assert(transforms_finite(p));
   WeightSolver::Vector a(p.support);
   WeightSolver::Matrix H;
   thread_local JointQuadrics g;

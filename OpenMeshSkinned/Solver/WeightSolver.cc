@@ -32,17 +32,21 @@ public:
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor, kMax, kMax> U;
   Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMax, 1> z;
 
+  // Returns false on a non-finite result: Ceres then rejects the step quietly, where a true with NaN in it
+  // makes it log a page per evaluation.
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
     const double* s = parameters[0];
+    bool finite = true;
     for (int i = 0; i < n_; ++i) {
       double r = -z[i];
       for (int k = 0; k < n_; ++k) r += U(i, k) * s[k] * s[k];
       residuals[i] = r;
+      finite &= std::isfinite(r);
     }
     if (jacobians && jacobians[0])
       for (int i = 0; i < n_; ++i)
-        for (int k = 0; k < n_; ++k) jacobians[0][i * n_ + k] = U(i, k) * 2.0 * s[k];
-    return true;
+        for (int k = 0; k < n_; ++k) finite &= std::isfinite(jacobians[0][i * n_ + k] = U(i, k) * 2.0 * s[k]);
+    return finite;
   }
 
 private:
@@ -66,6 +70,7 @@ struct WeightSolver::CeresCache {
     options.logging_type = ceres::SILENT;
     options.minimizer_progress_to_stdout = false;
     options.max_num_iterations = 100;
+    options.max_solver_time_in_seconds = 1.0;  // a bound for any input; a well-posed solve takes microseconds
     options.function_tolerance = 1e-14;
     options.gradient_tolerance = 1e-16;
     options.parameter_tolerance = 1e-12;
@@ -235,9 +240,34 @@ bool WeightSolver::active_set(const Mat& H, const Vec& start, double mu, const M
   return false;
 }
 
+namespace {
+
+// The refused solve's weights: the start's heaviest \p cap, summing to one (all zero when the start is
+// unusable too), so that a caller that keeps the weights whatever the error still holds a valid skin.
+void truncated_start(const Vec& start, int cap, const Mask* active, Vec& alpha) {
+  const int m = static_cast<int>(start.size());
+  alpha.setZero(m);
+  std::array<int, kMax> order;
+  int n = 0;
+  for (int k = 0; k < m; ++k)
+    if ((!active || (*active)[k]) && std::isfinite(start[k]) && start[k] > 0.0) order[n++] = k;
+  std::sort(order.begin(), order.begin() + n, [&](int a, int b) { return start[a] > start[b]; });
+  double sum = 0.0;
+  for (int i = 0; i < std::min(n, cap); ++i) sum += alpha[order[i]] = start[order[i]];
+  if (sum > 0.0) alpha /= sum;
+}
+
+}  // namespace
+
 double WeightSolver::solve(const Mat& H, const Vec& start, Vec& alpha, const Mask* active_in) {
   const int m = static_cast<int>(H.rows());
   ++stats_.solves;
+  if (!H.allFinite() || !start.allFinite()) {
+    // Huge coordinates can overflow the Gram matrix: no answer, and an iterative solve would not end.
+    ++stats_.non_finite;
+    truncated_start(start, m, active_in, alpha);
+    return std::numeric_limits<double>::infinity();
+  }
   const Mask active = active_in ? *active_in : Mask::Constant(m, true);
   const double mu = std::max(reg_ * H.diagonal().cwiseAbs().sum() / std::max(m, 1), 1e-300);
 
@@ -285,6 +315,10 @@ double WeightSolver::solve_capped(const Mat& H, const Vec& start, int cap, CapSt
   const int m = static_cast<int>(H.rows());
   double e = solve(H, start, alpha);
   int nnz = static_cast<int>((alpha.array() > 0.0).count());
+  if (!std::isfinite(e)) {
+    truncated_start(start, cap, nullptr, alpha);
+    return e;
+  }
   if (nnz <= cap) return e;
 
   Mask active(m);
@@ -312,6 +346,11 @@ double WeightSolver::solve_capped(const Mat& H, const Vec& start, int cap, CapSt
         best_k = k;
         best_alpha = trial;
       }
+    }
+    if (best_k < 0) {  // no removal has a finite error
+      ++stats_.non_finite;
+      truncated_start(start, cap, nullptr, alpha);
+      return std::numeric_limits<double>::infinity();
     }
     active[best_k] = false;
     alpha = best_alpha;

@@ -34,6 +34,15 @@ struct WeightSolverStats {
   size_t solves = 0;        ///< constrained problems solved
   size_t kkt_feasible = 0;  ///< answered by the closed form (on a support it found), proven optimal
   size_t ceres_calls = 0;
+  size_t non_finite = 0;  ///< problems refused: a non-finite Gram matrix or start (the error is then infinite)
+
+  WeightSolverStats& operator+=(const WeightSolverStats& o) {
+    solves += o.solves;
+    kkt_feasible += o.kkt_feasible;
+    ceres_calls += o.ceres_calls;
+    non_finite += o.non_finite;
+    return *this;
+  }
 };
 
 class WeightSolver {
@@ -48,7 +57,8 @@ public:
   WeightSolver& operator=(const WeightSolver&) = delete;
 
   /** Minimises over the joints marked in \p active (all when empty) with a >= 0 and sum(a) = 1.
-   *  Returns the objective a^T H a (without the pull term). Inactive joints get weight 0. */
+   *  Returns the objective a^T H a (without the pull term). Inactive joints get weight 0. A non-finite
+   *  \p H or \p start has no answer: the error is infinite and \p alpha the start's weights. */
   double solve(const Matrix& H, const Vector& start, Vector& alpha,
                const Eigen::Matrix<bool, Eigen::Dynamic, 1, 0, kMaxJoints, 1>* active = nullptr);
 
