@@ -28,6 +28,9 @@ struct ImportOptions {
   bool isolate = false;
   size_t memory_limit_mb = 8192;      ///< address space the isolated reader may use; 0 = no limit
   double time_limit_seconds = 300.0;  ///< wall-clock time the isolated reader may take; 0 = no limit
+  /// What the isolated reader printed (assimp, the C library), written to this process's stderr as
+  /// "reader: ..." lines; by default it is collected and dropped, so that an error is one line.
+  bool show_reader_output = false;
   /** Vertex-animated formats (MD2, MD3, MDL) store whole frames of positions: which one to read (assimp
    *  reads frame 0 when this is negative). import_frame_animation() reads them all. */
   int frame = -1;

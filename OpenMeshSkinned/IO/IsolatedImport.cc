@@ -1,6 +1,7 @@
 #include "OpenMeshSkinned/IO/IsolatedImport.hh"
 
 #include "OpenMeshSkinned/IO/ImportArchive.hh"
+#include "OpenMeshSkinned/IO/PrintableText.hh"
 
 #include <assimp/importerdesc.h>
 #include <assimp/Importer.hpp>
@@ -11,17 +12,22 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstring>
 #include <filesystem>
+#include <iostream>
 #include <new>
+#include <sstream>
 
 namespace OpenMeshSkinned {
 namespace {
 
 // The child's verdict, first byte of what it sends.
 constexpr char kOk = 'K', kError = 'E', kOutOfMemory = 'M';
+// What the child prints is kept up to this size (a reader in a loop may print without end).
+constexpr size_t kMaxReaderOutput = 64 << 10;
 
 bool write_all(int fd, const std::string& s) {
   size_t done = 0;
@@ -47,7 +53,12 @@ bool looks_like_oom(const std::string& message) {
   return message.find("bad_alloc") != std::string::npos || message.find("out of memory") != std::string::npos;
 }
 
-[[noreturn]] void run_child(int fd, const std::string& path, const std::string& read_path, const ImportOptions& opt) {
+[[noreturn]] void run_child(int fd, int err_fd, const std::string& path, const std::string& read_path,
+                            const ImportOptions& opt) {
+  // What the reader or the C library prints (glibc's "double free or corruption" above a crash) goes to
+  // the parent, which shows it only when asked: the user sees one line.
+  ::dup2(err_fd, STDERR_FILENO);
+  ::close(err_fd);
   rlimit core{0, 0};
   ::setrlimit(RLIMIT_CORE, &core);  // a crash of the reader is expected on bad files: no core dumps
   // The reader's crash must end the child by its signal, which the parent reports in one line: a handler
@@ -83,24 +94,30 @@ bool looks_like_oom(const std::string& message) {
 ImportReport import_isolated(const std::string& path, const std::string& read_path, SkinnedMesh& mesh,
                              const ImportOptions& opt) {
   auto fail = [&path](const std::string& what) { return IOError(path + ": " + what); };
-  int fds[2];
+  int fds[2], err[2];
   if (::pipe(fds) != 0) throw fail(std::string("cannot start the isolated reader: ") + std::strerror(errno));
-  const pid_t pid = ::fork();
-  if (pid < 0) {
+  if (::pipe(err) != 0) {
     ::close(fds[0]);
     ::close(fds[1]);
     throw fail(std::string("cannot start the isolated reader: ") + std::strerror(errno));
   }
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    for (int f : {fds[0], fds[1], err[0], err[1]}) ::close(f);
+    throw fail(std::string("cannot start the isolated reader: ") + std::strerror(errno));
+  }
   if (pid == 0) {
     ::close(fds[0]);
-    run_child(fds[1], path, read_path, opt);
+    ::close(err[0]);
+    run_child(fds[1], err[1], path, read_path, opt);
   }
   ::close(fds[1]);
+  ::close(err[1]);
 
   using Clock = std::chrono::steady_clock;
   const auto deadline = Clock::now() + std::chrono::duration<double>(opt.time_limit_seconds);
-  std::string bytes;
-  bool timed_out = false;
+  std::string bytes, said;
+  bool timed_out = false, err_open = true;
   char buf[1 << 16];
   for (;;) {
     int wait_ms = -1;
@@ -112,21 +129,33 @@ ImportReport import_isolated(const std::string& path, const std::string& read_pa
       }
       wait_ms = int(std::min<long long>(left, 1 << 30));
     }
-    pollfd p{fds[0], POLLIN, 0};
-    const int r = ::poll(&p, 1, wait_ms);
+    pollfd p[2] = {{fds[0], POLLIN, 0}, {err_open ? err[0] : -1, POLLIN, 0}};
+    const int r = ::poll(p, 2, wait_ms);
     if (r < 0 && errno == EINTR) continue;
     if (r == 0) continue;  // re-check the deadline
+    if (p[1].revents) {
+      const ssize_t n = ::read(err[0], buf, sizeof buf);
+      if (n > 0 && said.size() < kMaxReaderOutput)
+        said.append(buf, std::min(size_t(n), kMaxReaderOutput - said.size()));
+      if (n == 0 || (n < 0 && errno != EINTR)) err_open = false;
+    }
+    if (!p[0].revents) continue;
     const ssize_t n = ::read(fds[0], buf, sizeof buf);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) break;  // end of file: the child is done (or dead)
     bytes.append(buf, size_t(n));
   }
   ::close(fds[0]);
+  ::close(err[0]);
   if (timed_out) ::kill(pid, SIGKILL);
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
 
+  if (opt.show_reader_output && !said.empty()) {
+    std::istringstream lines(said);
+    for (std::string line; std::getline(lines, line);) std::cerr << "reader: " << printable_line(line, 1000) << "\n";
+  }
   const std::string format = " (format: " + format_name(path) + ")";
   if (timed_out)
     throw fail("the reader took longer than " + std::to_string(int(opt.time_limit_seconds)) + " s reading it" + format);

@@ -19,6 +19,7 @@ struct Options {
   int max_influences = 4;
   int poses = 8;
   bool quiet = false;
+  bool verbose = false;  // --verbose: the isolated reader's own output too
   bool poses_given = false;
   bool ratio_given = false;
   bool compare = false;

@@ -11,6 +11,7 @@
 #include <OpenMeshSkinned/IO/Import.hh>
 #include <OpenMeshSkinned/IO/ImportFrames.hh>
 #include <OpenMeshSkinned/IO/OutputSet.hh>
+#include <OpenMeshSkinned/IO/PrintableText.hh>
 #include <OpenMeshSkinned/Mesh/Procedural.hh>
 #include <OpenMeshSkinned/Skin/FrameAnimation.hh>
 #include <OpenMeshSkinned/Skin/KeyReduction.hh>
@@ -39,6 +40,8 @@ using namespace OpenMeshSkinned;
 
 // Area samples per surface and frame for the held-out error (plus every vertex).
 constexpr size_t kEvalSamples = 20000;
+
+std::atomic<const char*> stage{"starting"};
 
 using Clock = std::chrono::steady_clock;
 double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
@@ -225,7 +228,15 @@ void keep_bound_after_refit(const Mesh& original, Mesh& lmesh, std::vector<Pose>
 json run_character(const Mesh& mesh, const std::string& name, const Options& opt, const std::string& method,
                    const std::string& output, OutputSet* outputs, std::vector<HtmlSection>* html = nullptr,
                    const std::string& section_title = "", Mesh* last_use = nullptr) {
+  stage = "choosing the example poses";
   const Poses poses = choose_poses(mesh, name, opt);
+  // Keys of huge but finite values can still overflow once composed down a chain of joints.
+  for (const auto* set : {&poses.examples, &poses.heldout})
+    for (const Pose& p : *set)
+      if (!p.finite())
+        throw IOError(name + ": pose \"" + p.label +
+                      "\" is not finite: its keys' translations or scales are too large to compose");
+  stage = "decimating";
   std::vector<double> ratios;
   std::vector<size_t> targets;
   choose_targets(mesh, opt, ratios, targets);
@@ -283,6 +294,7 @@ json run_character(const Mesh& mesh, const std::string& name, const Options& opt
     lod.joints = skeleton(lmesh).size();
     lod.max_influences = max_influences_of(lmesh);
   }
+  stage = "measuring the held-out error";
   if (opt.evaluate)
     evaluate(mesh, chain, poses.heldout, lod_frames, opt.threads > 0 ? opt.threads : hardware_threads(), want_html);
   const auto t2 = Clock::now();
@@ -295,6 +307,7 @@ json run_character(const Mesh& mesh, const std::string& name, const Options& opt
   for (size_t i = 0; i < chain.size(); ++i) {
     auto& [lod, lmesh] = chain[i];
     if (outputs) {
+      stage = "writing the LODs";
       lod.file = lod_path(output, i, chain.size());
       export_gltf(lmesh, outputs->staging(lod.file));
     }
@@ -425,6 +438,8 @@ int run_builtin(const Options& opt) {
 
 }  // namespace
 
+const char* current_stage() { return stage.load(); }
+
 int run(const Options& opt) {
   check_arguments(opt);
   if (opt.input.empty()) return run_builtin(opt);
@@ -453,6 +468,8 @@ int run(const Options& opt) {
   io.isolate = opt.isolate;
   io.memory_limit_mb = opt.max_memory_mb;
   io.time_limit_seconds = opt.time_limit;
+  io.show_reader_output = opt.verbose;
+  stage = "reading the input";
   const auto t_import = Clock::now();
   const auto rep = frames.empty() ? import_skinned(opt.input, mesh, io)
                                   : import_frame_animation(frames, mesh, io, frame_rate(frames, opt.fps));
@@ -469,7 +486,8 @@ int run(const Options& opt) {
   if (opt.keyframes > 0 && frame_times(mesh).empty())
     throw UsageError("--keyframes: " + opt.input + " reads as a still mesh (its stored frames all have one shape)");
   // After the checks, so that a bad argument is one line. Always shown: they say what was changed or lost.
-  for (const auto& w : rep.warnings) std::cerr << "skinned-decimate: warning: " << opt.input << ": " << w << "\n";
+  for (const auto& w : rep.warnings)
+    std::cerr << "skinned-decimate: warning: " << printable_text(opt.input + ": " + w) << "\n";
   if (!opt.segment.empty()) {
     write_segmentation(mesh, opt.segment, outputs);
     if (opt.output.empty()) {

@@ -8,4 +8,7 @@ namespace skinned_decimate {
 /// Returns the exit code; throws UsageError (exit 2) or another exception (exit 1).
 int run(const Options& opt);
 
+/// What run() was doing last ("reading the input", "decimating", ...), for a message when memory runs out.
+const char* current_stage();
+
 }  // namespace skinned_decimate

@@ -3,12 +3,14 @@
 #include "Options.hh"
 #include "Run.hh"
 
+#include <OpenMeshSkinned/IO/PrintableText.hh>
 #include <OpenMeshSkinned/Solver/HugePages.hh>
 
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <iostream>
+#include <new>
 
 using namespace skinned_decimate;
 
@@ -56,6 +58,9 @@ int main(int argc, char** argv) {
   app.add_flag("--compare", opt.compare, "Run every method on the same input and print one table");
   app.add_option("--report", opt.report, "Write the summary as JSON");
   app.add_flag("--quiet", opt.quiet, "No progress and no pose list (warnings are still printed)");
+  app.add_flag("--verbose", opt.verbose,
+               "Also show what the input's reader printed (by default collected and dropped, so that a failure is "
+               "one line)");
   app.add_flag("!--no-bind-pose", opt.bind_pose, "Do not add the bind pose to the example poses");
   app.add_flag("!--no-isolate", opt.isolate,
                "Read the input in this process (by default a child process reads it, so that a reader crash on a "
@@ -151,13 +156,18 @@ int main(int argc, char** argv) {
   opt.ratio_given = app.count("--ratio") > 0;
   opt.faces_given = app.count("--faces") > 0;
   std::sort(opt.lods.rbegin(), opt.lods.rend());
+  // Messages quote names and bytes of the file: shown as one printable line each.
   try {
     return run(opt);
   } catch (const UsageError& e) {
-    std::cerr << "skinned-decimate: " << e.what() << "\n";
+    std::cerr << "skinned-decimate: " << OpenMeshSkinned::printable_line(e.what(), 1000) << "\n";
     return 2;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "skinned-decimate: out of memory while " << current_stage() << ": try fewer --poses (now " << opt.poses
+              << ") or --threads, or set --max-memory MB to be stopped before it runs out\n";
+    return 1;
   } catch (const std::exception& e) {
-    std::cerr << "skinned-decimate: " << e.what() << "\n";
+    std::cerr << "skinned-decimate: " << OpenMeshSkinned::printable_line(e.what(), 1000) << "\n";
     return 1;
   }
 }
