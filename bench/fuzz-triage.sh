@@ -8,6 +8,7 @@
 #     own heap), so those are listed as "rss-limit"; an input that no longer fails is "no-crash-on-replay".
 #
 #   bench/fuzz-triage.sh [RESULTS-DIR [MINUTES]]     default bench/results/fuzz; writes summary.txt, owners.txt
+#   (FUZZ_TARGET=fuzz_pipeline replays with the pipeline target, as bench/fuzz.sh --pipeline does)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-bench/results/fuzz}
@@ -37,7 +38,7 @@ for a in "$out"/artifacts/*; do
     echo "NOT CLEAN: $a exit $code: $msg"
   fi
 
-  trace=$(build-fuzz/fuzz_import -runs=1 -timeout=10 -rss_limit_mb=4096 -malloc_limit_mb=4096 -detect_leaks=0 "$a" 2>&1 || true)
+  trace=$(build-fuzz/"${FUZZ_TARGET:-fuzz_import}" -runs=1 -timeout=10 -rss_limit_mb=4096 -malloc_limit_mb=4096 -detect_leaks=0 "$a" 2>&1 || true)
   # The first stack trace only; its frames in the code that matters: ours, assimp's, zlib's.
   frames=$(awk '/^ +#0 0x/ { n++ } n == 1 && /^ +#[0-9]+ 0x/' <<<"$trace" |
     grep -E "$PWD/(OpenMeshSkinned|fuzz)/|libassimp|Assimp::|libz\.so" || true)
