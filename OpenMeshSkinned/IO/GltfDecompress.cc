@@ -245,6 +245,9 @@ bool decode_meshopt(json& doc, GltfBytes& bytes, const std::string& shown_as) {
   return any;
 }
 
+std::vector<double> accessor_values(json& doc, size_t a, GltfBytes& bytes, const std::string& shown_as,
+                                    bool as_stored = false);
+
 // --- KHR_draco_mesh_compression ----------------------------------------------------------------------
 
 // Writes one Draco attribute as the accessor declares it (the spec keeps the accessor's type).
@@ -356,6 +359,22 @@ bool decode_draco(json& doc, GltfBytes& bytes, const std::string& shown_as) {
         if (n == 0 || (values.empty() && points > 0))
           throw IOError(what + ": Draco attribute " + name + " cannot be read as its accessor's type");
         point_accessor_at(acc, bytes.add_view(values), type, points);
+        // Draco quantises: the declared bounds are the original's, the decoded values lie a step inside.
+        if (acc.contains("min") || acc.contains("max")) {
+          const std::vector<double> v = accessor_values(doc, a, bytes, shown_as, true);
+          json lo = json::array(), hi = json::array();
+          for (size_t c = 0; c < n; ++c) {
+            double l = std::numeric_limits<double>::infinity(), h = -l;
+            for (size_t i = c; i < v.size(); i += n) l = std::min(l, v[i]), h = std::max(h, v[i]);
+            lo.push_back(l), hi.push_back(h);
+          }
+          json& bounded = doc["accessors"][a];
+          if (v.empty()) {
+            bounded.erase("min"), bounded.erase("max");
+          } else {
+            bounded["min"] = lo, bounded["max"] = hi;
+          }
+        }
       }
       erase_extension(prim, kDraco);
       any = true;
@@ -366,15 +385,17 @@ bool decode_draco(json& doc, GltfBytes& bytes, const std::string& shown_as) {
 
 // --- KHR_mesh_quantization and integer animation outputs -----------------------------------------------
 
-// Every value of an accessor as the spec gives it, sparse substitutions included.
-std::vector<double> accessor_values(json& doc, size_t a, GltfBytes& bytes, const std::string& shown_as) {
+// Every value of an accessor as the spec gives it (or, \p as_stored, as integers before normalisation),
+// sparse substitutions included.
+std::vector<double> accessor_values(json& doc, size_t a, GltfBytes& bytes, const std::string& shown_as,
+                                    bool as_stored) {
   const json& acc = doc["accessors"][a];
   const std::string what = shown_as + ": accessor " + std::to_string(a);
   const size_t n = component_count(acc.value("type", "")), count = acc.value("count", size_t(0));
   const int type = acc.value("componentType", 0);
   const size_t cs = component_size(type);
   if (n == 0 || cs == 0) throw IOError(what + " has an unknown type");
-  const bool normalized = acc.value("normalized", false);
+  const bool normalized = !as_stored && acc.value("normalized", false);
   std::vector<double> out(count * n, 0.0);
   if (acc.contains("bufferView")) {
     const size_t view = index_in(acc, "bufferView", doc["bufferViews"].size(), what);
