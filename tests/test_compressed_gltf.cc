@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -256,4 +257,29 @@ TEST(CompressedGltf, BasisuTexturesDoNotStopReading) {
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_EQ(r.out.find("KHR_texture_basisu"), std::string::npos) << r.out;
   omsk_test::expect_valid_gltf((d / "out.glb").string());
+}
+
+// gltfpack stores UVs as 16-bit integers and undoes that with a KHR_texture_transform on every texture of
+// the material, which assimp drops: the decoded copy folds it into the coordinates, so every corner keeps
+// its UV (within a quantisation step) and the transform is gone.
+TEST(CompressedGltf, QuantisedUvsKeepTheirCoordinates) {
+  const std::string box = std::string(OMSK_TEST_MODELS) + "/glTF2/BoxTextured-glTF-Binary/BoxTextured.glb";
+  run("node '" + gltfpack + "' -i '" + box + "' -o box_c.glb -c");
+  const RepairedGltf copy((dir() / "box_c.glb").string());
+  ASSERT_FALSE(copy.path().empty());
+  const tinygltf::Model decoded = omsk_spec::load(copy.path()), original = omsk_spec::load(box);
+  EXPECT_EQ(std::count(decoded.extensionsUsed.begin(), decoded.extensionsUsed.end(), "KHR_texture_transform"), 0);
+  const auto a = omsk_spec::pose(original, -1, 0.0), b = omsk_spec::pose(decoded, -1, 0.0);
+  ASSERT_TRUE(a.has_uv && b.has_uv);
+  ASSERT_EQ(a.points.size(), b.points.size());
+  const double diag = omsk_spec::diagonal(a);
+  double uv_range = 0.0;
+  for (const auto& uv : a.uvs) uv_range = std::max(uv_range, uv.cwiseAbs().maxCoeff());
+  for (size_t i = 0; i < b.points.size(); ++i) {
+    double best = std::numeric_limits<double>::infinity();
+    for (size_t j = 0; j < a.points.size(); ++j)
+      if ((a.points[j] - b.points[i]).norm() < 1e-3 * diag) best = std::min(best, (a.uvs[j] - b.uvs[i]).norm());
+    EXPECT_LT(best, 2.0 * uv_range / 4095) << "corner " << i << " (12-bit UVs)";
+  }
+  omsk_test::expect_valid_gltf(copy.path());
 }
