@@ -68,6 +68,11 @@ const std::map<std::string, Fixture>& fixtures() {
       run("draco_transcoder -i '" + src + "' -o " + name + "_draco.glb");
       f[name + "_draco"] = {(dir() / (name + "_draco.glb")).string(), src, true, true};
     }
+    // A large scene: 34 Draco primitives in 29 meshes, instanced by 67 nodes.
+    const std::string engine_glb =
+        std::string(OMSK_TEST_MODELS) + "/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
+    run("draco_transcoder -i '" + engine_glb + "' -o engine_draco.glb");
+    f["engine_draco"] = {(dir() / "engine_draco.glb").string(), engine_glb, true, true};
     return f;
   }();
   return all;
@@ -136,14 +141,24 @@ TEST_P(Compressed, ImportsLikeTheOriginal) {
   ImportReport rp, ro;
   ASSERT_NO_THROW(rp = import_skinned(f.file, packed));
   ro = import_skinned(f.original, plain);
-  EXPECT_EQ(rp.faces, ro.faces);
+  // The importer skips degenerate triangles (a repeated vertex). Draco's encoder drops them itself, and its
+  // 11-bit positions make a few slivers degenerate (the engine: 10 of 110,336).
+  if (f.draco) {
+    EXPECT_LE(rp.faces, ro.faces);
+    EXPECT_GE(rp.faces, ro.faces - ro.faces / 1000);
+  } else {
+    EXPECT_EQ(rp.faces, ro.faces);
+  }
   EXPECT_EQ(rp.rigid, ro.rigid);
   // gltfpack re-indexes the vertices (Testwuson: 2,164 welded against 2,173 with -noq); quantisation may
   // also weld vertices that were apart by less than a step.
   EXPECT_NEAR(double(rp.welded_vertices), double(ro.welded_vertices), (f.quantized ? 0.1 : 0.01) * ro.welded_vertices);
   const std::set<std::string> packed_joints = joint_names(packed);
   for (const std::string& j : joint_names(plain))
-    if (j.rfind("$", 0) != 0 && !j.empty()) EXPECT_TRUE(packed_joints.count(j)) << "joint " << j << " is lost";
+    // assimp names its own helper nodes "$…" and unnamed nodes by their index ("nodes[3]"), which a packer
+    // may renumber: only the file's names must survive.
+    if (!j.empty() && j.rfind("$", 0) != 0 && j.rfind("nodes[", 0) != 0)
+      EXPECT_TRUE(packed_joints.count(j)) << "joint " << j << " is lost";
   ASSERT_EQ(clips(packed).size(), clips(plain).size());
   for (size_t c = 0; c < clips(plain).size(); ++c) {
     EXPECT_EQ(clips(packed)[c].name, clips(plain)[c].name);
@@ -172,10 +187,10 @@ TEST_P(Compressed, RatioOneIsJudgedLosslessAndValid) {
 INSTANTIATE_TEST_SUITE_P(Packed, Compressed,
                          ::testing::Values("wuson_c", "wuson_cc", "wuson_c_noq", "wuson_cc_noq", "wuson_draco",
                                            "simple_skin_c", "simple_skin_cc", "simple_skin_c_noq", "simple_skin_cc_noq",
-                                           "simple_skin_draco"));
+                                           "simple_skin_draco", "engine_draco"));
 
-// Debian's Draco sample: 34 Draco primitives in 29 meshes, every one decoded (assimp's own decoding
-// fails on larger scenes of this kind); every triangle the file's accessors declare arrives.
+// Debian's Draco sample: 34 Draco primitives in 29 meshes, every one decoded by the tool before assimp
+// reads the file; every triangle the file's accessors declare arrives.
 TEST(CompressedGltf, DracoSceneWithManyPrimitives) {
   const RepairedGltf copy(engine);
   ASSERT_FALSE(copy.path().empty());
