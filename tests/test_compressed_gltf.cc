@@ -16,9 +16,12 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iostream>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <set>
@@ -232,7 +235,7 @@ TEST(CompressedGltf, NewerMeshoptCodecIsRefusedByName) {
 }
 
 // Writes simple_skin with extra top-level JSON members (its buffers are data URIs).
-fs::path simple_skin_with(const fs::path& d, const std::string& name, const json& extra) {
+static fs::path simple_skin_with(const fs::path& d, const std::string& name, const json& extra) {
   std::ifstream in(simple_skin);
   json doc = json::parse(in);
   for (const auto& [k, v] : extra.items()) doc[k] = v;
@@ -297,4 +300,44 @@ TEST(CompressedGltf, QuantisedUvsKeepTheirCoordinates) {
     EXPECT_LT(best, 2.0 * uv_range / 4095) << "corner " << i << " (12-bit UVs)";
   }
   omsk_test::expect_valid_gltf(copy.path());
+}
+
+namespace {
+// A GLB's JSON chunk edited, its binary chunk kept.
+void edit_glb(const std::string& in, const std::string& out, const std::function<void(json&)>& edit) {
+  std::ifstream f(in, std::ios::binary);
+  const std::string data((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  uint32_t json_len = 0;
+  std::memcpy(&json_len, data.data() + 12, 4);
+  json doc = json::parse(data.substr(20, json_len));
+  edit(doc);
+  std::string text = doc.dump();
+  while (text.size() % 4) text += ' ';
+  const std::string rest = data.substr(20 + json_len);
+  auto u32 = [](uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+  std::ofstream(out, std::ios::binary) << "glTF" << u32(2) << u32(uint32_t(20 + text.size() + rest.size()))
+                                       << u32(uint32_t(text.size())) << "JSON" << text << rest;
+}
+
+}  // namespace
+
+// Truncated compressed streams: one line naming the part that cannot be decoded, exit 1, no output.
+TEST(CompressedGltf, CorruptStreamsAreOneLine) {
+  const fs::path d = omsk_test::scratch_dir("compressed", "corrupt");
+  edit_glb(fixtures().at("simple_skin_c").file, (d / "meshopt.glb").string(), [](json& doc) {
+    auto& e = doc["bufferViews"][0]["extensions"]["EXT_meshopt_compression"];
+    e["byteLength"] = e["byteLength"].get<size_t>() / 2;
+  });
+  edit_glb(fixtures().at("wuson_draco").file, (d / "draco.glb").string(), [](json& doc) {
+    const size_t v = doc["meshes"][0]["primitives"][0]["extensions"]["KHR_draco_mesh_compression"]["bufferView"];
+    doc["bufferViews"][v]["byteLength"] = doc["bufferViews"][v]["byteLength"].get<size_t>() / 2;
+  });
+  for (const auto& [file, says] : {std::pair<std::string, std::string>{"meshopt.glb", "buffer view 0"},
+                                   {"draco.glb", "primitive 0 of mesh 0: its Draco data cannot be decoded"}}) {
+    const auto r = omsk_test::run_command(OMSK_CLI_EXE, file + " -o out.glb --ratio 1 --quiet", d);
+    EXPECT_EQ(r.code, 1) << r.out;
+    EXPECT_NE(r.out.find(says), std::string::npos) << r.out;
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+    EXPECT_FALSE(fs::exists(d / "out.glb"));
+  }
 }
