@@ -7,6 +7,7 @@
 #include <cereal/external/base64.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -158,6 +159,10 @@ void decode_meshopt_view(json& doc, size_t v, const char* ext, GltfBytes& bytes,
   const std::string src = bytes.range(buffer, offset, length, what);
 
   if (stride == 0 || count == 0 || stride > 256) throw IOError(what + " has a byteStride of " + std::to_string(stride));
+  // The extension makes the view's byteLength the decoded size: anything else is a broken file.
+  if (doc["bufferViews"][v].value("byteLength", size_t(0)) != count * stride)
+    throw IOError(what + " decodes to " + std::to_string(count) + " x " + std::to_string(stride) +
+                  " bytes, not the view's byteLength");
   std::string out(count * stride, '\0');
   auto* dst = out.data();
   const auto* in = reinterpret_cast<const unsigned char*>(src.data());
@@ -305,7 +310,11 @@ bool decode_draco(json& doc, GltfBytes& bytes, const std::string& shown_as) {
       const std::unique_ptr<draco::Mesh> dm = std::move(decoded).value();
       const size_t points = dm->num_points();
       json& accessors = array_of(doc, "accessors");
-      if (prim.contains("indices")) {
+      if (!prim.contains("indices")) {  // the decoded mesh is indexed whatever the primitive said
+        accessors.push_back({{"componentType", kUnsignedInt}, {"type", "SCALAR"}, {"count", 0}});
+        prim["indices"] = accessors.size() - 1;
+      }
+      {
         std::string idx(dm->num_faces() * 3 * sizeof(uint32_t), '\0');
         for (draco::FaceIndex f(0); f < dm->num_faces(); ++f)
           for (int c = 0; c < 3; ++c) {
