@@ -1,5 +1,7 @@
 // The report page (--html) and its contact sheet (--preview), checked in a real browser (Debian's chromium
 // through playwright-core, tests/browser/check-report.mjs): what a technical artist relies on when looking.
+#include "fixtures.hh"
+#include "gltf_spec.hh"
 #include "run_command.hh"
 #include "validate.hh"
 
@@ -109,6 +111,29 @@ TEST(HtmlReport, AssetsBesideThePageWorkToo) {
   if (!browser_check(d / "w.html", 2)) GTEST_SKIP() << "no Chromium here: the browser checks did not run";
 }
 
+// A Mixamo-like character: its root rotated and scaled to centimetres, the skinned mesh under a node whose
+// transform the spec ignores, and a rest pose away from where the clips play (the joints the clips move
+// rest a diagonal off). The browser check frames every view whole at times over the clip.
+TEST(HtmlReport, ARotatedScaledRootIsFramedWholeOverTheClip) {
+  const auto d = scratch("rotated");
+  tinygltf::Model m = omsk_fixtures::testwuson(d.string());
+  const double diag = omsk_spec::diagonal(omsk_spec::pose(m, -1, 0.0));
+  std::set<int> moved;
+  for (const auto& c : m.animations[0].channels)
+    if (c.target_path == "translation") moved.insert(c.target_node);
+  ASSERT_FALSE(moved.empty());
+  for (int n : moved) {
+    auto& t = m.nodes[n].translation;
+    if (t.empty()) t = {0.0, 0.0, 0.0};
+    t[1] += diag;
+  }
+  omsk_fixtures::wrap_under_rotated_root(m);
+  omsk_spec::save_glb(m, (d / "rot.glb").string());
+  const auto r = omsk_test::run_command(OMSK_CLI_EXE, "rot.glb -o r.glb --ratio 0.5 --html r.html --quiet", d);
+  ASSERT_EQ(r.code, 0) << r.out;
+  if (!browser_check(d / "r.html", 2)) GTEST_SKIP() << "no Chromium here: the browser checks did not run";
+}
+
 TEST(HtmlReport, ThePreviewIsAContactSheetOfViewsByHeldOutFrames) {
   const auto d = scratch("preview");
   if (!fs::exists("/usr/bin/chromium") && !getenv("OMSK_CHROMIUM")) GTEST_SKIP() << "no Chromium here";
@@ -117,9 +142,9 @@ TEST(HtmlReport, ThePreviewIsAContactSheetOfViewsByHeldOutFrames) {
   int w = 0, h = 0, n = 0;
   unsigned char* px = stbi_load((d / "w.png").c_str(), &w, &h, &n, 3);
   ASSERT_NE(px, nullptr);
-  // Rows: the original and two LODs (200 px and an 18 px caption each); columns: four held-out frames of
-  // 200 px after a 170 px label column.
-  EXPECT_EQ(w, 170 + 4 * 200);
+  // Rows: the original and two LODs (200 px and an 18 px caption each); columns: four held-out frames, each
+  // as the views look and as their error, of 200 px after a 170 px label column.
+  EXPECT_EQ(w, 170 + 4 * 2 * 200);
   EXPECT_EQ(h, 3 * 218);
   std::set<int> colours;
   for (int i = 0; i < w * h; i += 7) colours.insert(px[3 * i] << 16 | px[3 * i + 1] << 8 | px[3 * i + 2]);

@@ -1,5 +1,6 @@
 #include "OpenMeshSkinned/IO/GltfRepair.hh"
 
+#include "OpenMeshSkinned/IO/GltfDecompress.hh"
 #include "OpenMeshSkinned/IO/IOError.hh"
 
 #include <cereal/external/base64.hpp>
@@ -55,20 +56,20 @@ bool add_identity_inverse_binds(json& doc) {
 }
 
 // A .gltf's external buffers and images, linked into the scratch folder so that the copy finds them.
-void link_resources(const json& doc, const fs::path& source_dir, const fs::path& scratch, const std::string& path) {
+void link_resources(const json& doc, const fs::path& source_dir, const fs::path& scratch, const std::string& path,
+                    const std::string& why) {
   for (const char* kind : {"buffers", "images"}) {
     if (!doc.contains(kind) || !doc[kind].is_array()) continue;
     for (const auto& r : doc[kind]) {
       if (!r.is_object() || !r.contains("uri") || !r["uri"].is_string()) continue;
       const std::string uri = r["uri"];
-      if (uri.rfind("data:", 0) == 0) continue;
+      if (uri.rfind("data:", 0) == 0 || uri == detail::GltfBytes::added_uri) continue;
       const fs::path rel(uri);
       bool outside = rel.is_absolute() || uri.find(':') != std::string::npos;
       for (const auto& part : rel) outside |= part == "..";
       if (outside)
-        throw IOError(path +
-                      ": has a skin without inverseBindMatrices (which assimp 5.2 cannot read) and refers to \"" + uri +
-                      "\" outside its folder, so it cannot be repaired on the way in");
+        throw IOError(path + ": has " + why + " (which assimp 5.2 cannot read) and refers to \"" + uri +
+                      "\" outside its folder, so it cannot be rewritten on the way in");
       const fs::path target = fs::absolute(source_dir / rel);
       if (!fs::exists(target)) continue;  // the reader reports the missing file
       fs::create_directories((scratch / rel).parent_path());
@@ -87,17 +88,35 @@ RepairedGltf::RepairedGltf(const std::string& path) {
   const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 
   json doc;
-  std::string bin_chunks;  // every chunk after the JSON one, as it is
+  std::string bin;  // the GLB's binary chunk (its payload)
+  bool has_bin = false;
+  std::string other_chunks;  // every chunk after those two, as it is
   if (glb) {
     if (data.size() < 20 || data.compare(0, 4, "glTF") != 0) return;
     const uint32_t json_len = le32(data, 12);
     if (data.compare(16, 4, "JSON") != 0 || 20ull + json_len > data.size()) return;
     doc = json::parse(data.begin() + 20, data.begin() + 20 + json_len, nullptr, false);
-    bin_chunks = data.substr(20 + json_len);
+    size_t at = 20 + json_len;
+    if (at + 8 <= data.size() && data.compare(at + 4, 4, "BIN\0", 4) == 0 &&
+        at + 8ull + le32(data, at) <= data.size()) {
+      bin = data.substr(at + 8, le32(data, at));
+      has_bin = true;
+      at += 8 + le32(data, at);
+    }
+    other_chunks = data.substr(std::min(at, data.size()));
   } else {
     doc = json::parse(data, nullptr, false);
   }
-  if (doc.is_discarded() || !doc.is_object() || !add_identity_inverse_binds(doc)) return;  // the reader judges
+  if (doc.is_discarded() || !doc.is_object()) return;  // the reader judges
+  detail::check_required_extensions(doc, path);
+
+  const fs::path source_dir = fs::absolute(fs::path(path)).parent_path();
+  detail::GltfBytes bytes(doc, has_bin ? &bin : nullptr, source_dir, path);
+  std::vector<std::string> why = detail::decompress_gltf(doc, bytes, path);
+  if (add_identity_inverse_binds(doc)) why.push_back("a skin without inverseBindMatrices");
+  if (why.empty()) return;
+  std::string reasons;
+  for (const std::string& w : why) reasons += (reasons.empty() ? "" : ", ") + w;
 
   std::string tmpl = (fs::temp_directory_path() / "omsk-gltf-XXXXXX").string();
   if (!::mkdtemp(tmpl.data()))
@@ -110,16 +129,28 @@ RepairedGltf::RepairedGltf(const std::string& path) {
     std::string file;
     if (glb) {
       while (text.size() % 4) text += ' ';
+      while (bin.size() % 4) bin += '\0';
+      const size_t bin_part = has_bin || !bin.empty() ? 8 + bin.size() : 0;
       file = "glTF";
       put32(file, 2);
-      put32(file, uint32_t(12 + 8 + text.size() + bin_chunks.size()));
+      put32(file, uint32_t(12 + 8 + text.size() + bin_part + other_chunks.size()));
       put32(file, uint32_t(text.size()));
       file += "JSON";
       file += text;
-      file += bin_chunks;
+      if (bin_part) {
+        put32(file, uint32_t(bin.size()));
+        file.append("BIN\0", 4);
+        file += bin;
+      }
+      file += other_chunks;
     } else {
-      link_resources(doc, fs::absolute(fs::path(path)).parent_path(), scratch, path);
       file = text;
+    }
+    link_resources(doc, source_dir, scratch, path, reasons);
+    if (!bytes.added().empty()) {
+      std::ofstream b(scratch / detail::GltfBytes::added_uri, std::ios::binary);
+      b << bytes.added();
+      if (!b) throw IOError(path + ": the decoded data cannot be written to " + dir_);
     }
     std::ofstream f(out, std::ios::binary);
     f << file;

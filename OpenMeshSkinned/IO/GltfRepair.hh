@@ -2,9 +2,13 @@
 /** \file GltfRepair.hh
  *  Valid glTF that assimp 5.2 cannot read, made readable before it gets there.
  *
- *  Today one case: a skin without "inverseBindMatrices". The spec makes them optional (identity by
- *  default), and assimp dereferences the missing accessor and crashes. The repair adds the identity
- *  matrices, so the file poses exactly as the spec says.
+ *  - A skin without "inverseBindMatrices": the spec makes them optional (identity by default), and
+ *    assimp dereferences the missing accessor and crashes. The repair adds the identity matrices, so the
+ *    file poses exactly as the spec says.
+ *  - Compressed and quantised data (`EXT_meshopt_compression`, `KHR_meshopt_compression` version 0,
+ *    `KHR_draco_mesh_compression`, `KHR_mesh_quantization`): decoded into plain buffer views
+ *    (GltfDecompress.hh). `KHR_texture_basisu` images pass through untouched.
+ *  A file that requires any other extension the tool cannot honour is refused.
  */
 
 #include <string>
@@ -13,8 +17,10 @@ namespace OpenMeshSkinned {
 
 /** A repaired copy of a .gltf/.glb when it needs one, in a private temporary folder removed with the
  *  object; path() is "" when the file needs none (or is not glTF: the reader judges it). The files a
- *  .gltf refers to are linked into the folder under the same relative names. Throws IOError when the file
- *  needs a repair that cannot be made (a resource outside the file's folder). */
+ *  glTF refers to are linked into the folder under the same relative names; decoded data goes into the
+ *  GLB's binary chunk, or into a file of its own beside a .gltf. Throws IOError, naming \p path, when the
+ *  file requires an extension the tool cannot honour, when its compressed data cannot be decoded, or
+ *  when it needs a repair that cannot be made (a resource outside the file's folder). */
 class RepairedGltf {
 public:
   explicit RepairedGltf(const std::string& path);

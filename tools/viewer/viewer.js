@@ -131,18 +131,40 @@ class Section {
       const mixer = new THREE.AnimationMixer(gltf.scene);
       this.views.push({ spec: v, scene, gltf, mixer, meshes, actions: new Map() });
     }
-    // Frame the original in the rest pose; every view shares the camera.
-    const box = new THREE.Box3().setFromObject(this.views[0].gltf.scene);
-    const size = box.getSize(new THREE.Vector3()).length() || 1;
-    const centre = box.getCenter(new THREE.Vector3());
-    this.camera.near = size / 100;
-    this.camera.far = size * 100;
-    this.camera.position.copy(centre).add(new THREE.Vector3(0.35, 0.25, 1).normalize().multiplyScalar(size * 1.5));
-    this.camera.updateProjectionMatrix();
-    this.controls.target.copy(centre);
-    this.controls.update();
     this.setClip(this.spec.clips.length ? this.spec.clips[0].name : null);
     this.applyLook();
+  }
+
+  // Frames the views' posed bounds over the whole clip (the rest pose without one), seen from the camera's
+  // current direction: a rest-pose box misses characters whose root is rotated or scaled (a Mixamo rig in
+  // centimetres shows only the top of its head) and every move that leaves it. Every view shares the camera.
+  frameClip() {
+    const box = new THREE.Box3();
+    const d = this.duration(), samples = d > 0 ? 12 : 1;
+    for (let k = 0; k < samples; ++k) {
+      for (const v of this.views) {
+        v.mixer.setTime(d > 0 ? (d * k) / (samples - 1) : 0);
+        v.gltf.scene.updateMatrixWorld(true);
+        v.gltf.scene.traverse((o) => { if (o.isSkinnedMesh) o.computeBoundingBox(); });
+        box.expandByObject(v.gltf.scene);
+      }
+    }
+    for (const v of this.views) v.mixer.setTime(this.time);
+    if (box.isEmpty()) return;
+    const sphere = box.getBoundingSphere(new THREE.Sphere());
+    const r = sphere.radius || 1;
+    const vfov = THREE.MathUtils.degToRad(this.camera.fov);
+    const hfov = 2 * Math.atan(Math.tan(vfov / 2) * this.camera.aspect);
+    const distance = (1.05 * r) / Math.sin(Math.min(vfov, hfov) / 2);
+    const dir = this.framed ? this.camera.position.clone().sub(this.controls.target).normalize()
+      : new THREE.Vector3(0.35, 0.25, 1).normalize();
+    this.camera.near = distance / 100;
+    this.camera.far = distance * 100;
+    this.camera.position.copy(sphere.center).addScaledVector(dir, distance);
+    this.camera.updateProjectionMatrix();
+    this.controls.target.copy(sphere.center);
+    this.controls.update();
+    this.framed = true;
   }
 
   duration() {
@@ -158,6 +180,8 @@ class Section {
       const clip = v.gltf.animations.find((a) => a.name === name);
       if (clip) v.mixer.clipAction(clip).play();
     }
+    this.time = 0;
+    this.frameClip();
     this.setTime(0);
   }
 
@@ -220,13 +244,15 @@ async function main() {
   requestAnimationFrame(frame);
 }
 
-// A contact sheet: for every section, one row per view, one column per frame (by default the section's
-// preview frames, held-out {clip, time}; or the given times in the current clip); a PNG data URL.
+// A contact sheet: for every section, one row per view, and for each frame (by default the section's
+// preview frames, held-out {clip, time}; or the given times in the current clip) two cells: the view as it
+// looks (its materials and textures) and, beside it, its held-out error (blank for the original, the
+// reference). A PNG data URL.
 function contactSheet(times, cell = 200) {
   const timesOf = (s) =>
     times ? times.map((t) => ({ clip: s.clip, time: t })) : (s.spec.preview.length ? s.spec.preview : [{ clip: s.clip, time: 0 }]);
   const rows = sections.reduce((n, s) => n + s.views.length, 0);
-  const cols = Math.max(1, ...sections.map((s) => timesOf(s).length));
+  const cols = 2 * Math.max(1, ...sections.map((s) => timesOf(s).length));
   const label = 18, left = 170;
   const out = document.createElement('canvas');
   out.width = cell * cols + left;
@@ -237,27 +263,41 @@ function contactSheet(times, cell = 200) {
   g.font = '13px sans-serif';
   let row = 0;
   for (const s of sections) {
-    const playing = s.playing, clip = s.clip;
+    const playing = s.playing, clip = s.clip, heat = s.heat.checked;
     s.setPlaying(false);
-    timesOf(s).forEach(({ clip: c, time: t }, col) => {
+    timesOf(s).forEach(({ clip: c, time: t }, frame) => {
       if (c !== s.clip) s.setClip(c);
       s.setTime(t);
-      s.views.forEach((v, i) => {
-        const r = s.rect(i);
-        const side = Math.min(r.w, r.h);
-        const y = (row + i) * (cell + label);
-        g.drawImage(s.canvas, r.x + (r.w - side) / 2, (r.h - side) / 2, side, side, left + col * cell, y + label,
-          cell, cell);
-        g.fillStyle = '#222';
-        if (col === 0) {
-          g.fillText(`${s.spec.title}`.slice(0, 22), 4, y + label + cell / 2 - 16);
-          g.fillText(`${v.spec.label}`.slice(0, 22), 4, y + label + cell / 2);
-          g.fillText(`${v.spec.triangles} triangles`, 4, y + label + cell / 2 + 16);
-        }
-        if (i === 0) g.fillText(`${s.clip ?? 'rest pose'} @ ${t.toFixed(2)} s`, left + col * cell + 4, y + 13);
+      [false, true].forEach((withError) => {
+        s.heat.checked = withError;
+        s.applyLook();
+        const col = 2 * frame + (withError ? 1 : 0);
+        s.views.forEach((v, i) => {
+          const r = s.rect(i);
+          const side = Math.min(r.w, r.h);
+          const y = (row + i) * (cell + label);
+          const x = left + col * cell;
+          g.fillStyle = '#222';
+          if (withError && !v.meshes.some((m) => m.hasError)) {
+            g.fillText(i === 0 ? '(the reference)' : '(error not measured)', x + 4, y + label + cell / 2);
+          } else {
+            g.drawImage(s.canvas, r.x + (r.w - side) / 2, (r.h - side) / 2, side, side, x, y + label, cell, cell);
+          }
+          if (col === 0) {
+            g.fillText(`${s.spec.title}`.slice(0, 22), 4, y + label + cell / 2 - 16);
+            g.fillText(`${v.spec.label}`.slice(0, 22), 4, y + label + cell / 2);
+            g.fillText(`${v.spec.triangles} triangles`, 4, y + label + cell / 2 + 16);
+          }
+          if (i === 0) {
+            const what = withError ? 'held-out error' : `${s.clip ?? 'rest pose'} @ ${t.toFixed(2)} s`;
+            g.fillText(what, x + 4, y + 13);
+          }
+        });
       });
     });
     row += s.views.length;
+    s.heat.checked = heat;
+    s.applyLook();
     if (clip !== s.clip) s.setClip(clip);
     s.setPlaying(playing);
   }
