@@ -348,12 +348,12 @@ Material Mapper::map() {
     g["emissiveTexture"] = reference(emissive);
     if (e.IsBlack()) e = aiColor3D(1, 1, 1);  // a map with no colour to scale it still glows
   }
-  const float brightest = std::max({e.r, e.g, e.b});
-  if (brightest > 0.0f) {
+  const double brightest = std::max({e.r, e.g, e.b});
+  if (brightest > 0.0) {
     // glTF's factor stops at 1; brighter goes to KHR_materials_emissive_strength.
-    const float k = brightest > 1.0f ? brightest : 1.0f;
+    const double k = std::max(brightest, 1.0);
     g["emissiveFactor"] = {e.r / k, e.g / k, e.b / k};
-    if (k > 1.0f) g["extensions"]["KHR_materials_emissive_strength"] = {{"emissiveStrength", k}};
+    if (k > 1.0) g["extensions"]["KHR_materials_emissive_strength"] = {{"emissiveStrength", k}};
   }
 
   if (blend) g["alphaMode"] = "BLEND";

@@ -88,7 +88,8 @@ bool find_texture_file(const std::string& stored, const std::string& source_dir,
   candidates.push_back(as_stored.is_absolute() ? as_stored : fs::path(source_dir) / as_stored);
   // Windows paths ("C:/work/x.png") and paths from another machine: the file's name beside the source.
   name = norm.substr(norm.find_last_of('/') + 1);
-  if (!name.empty()) candidates.push_back(fs::path(source_dir) / name);
+  if (!name.empty() && fs::path(source_dir) / name != candidates.front())
+    candidates.push_back(fs::path(source_dir) / name);
   for (const fs::path& p : candidates) {
     std::error_code ec;
     if (!fs::is_regular_file(p, ec)) continue;
