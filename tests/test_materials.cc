@@ -5,6 +5,7 @@
 #include "run_command.hh"
 #include "validate.hh"
 
+#include <OpenMeshSkinned/IO/GltfMaterials.hh>
 #include <OpenMeshSkinned/IO/Import.hh>
 #include <OpenMeshSkinned/IO/Textures.hh>
 #include <OpenMeshSkinned/Skin/SkinProperties.hh>
@@ -320,6 +321,19 @@ TEST(Materials, ClearCoatMaterialsAndTheirTexturesComeThrough) {
   const auto in_errors = validator_errors(input), out_errors = validator_errors(out.string());
   EXPECT_EQ(out_errors, in_errors);
   for (const auto& e : out_errors) EXPECT_EQ(e, "MESH_PRIMITIVE_NO_TANGENT_SPACE");
+  // Every image once, however many textures and materials show it (the input has 10 textures of 6 images).
+  EXPECT_EQ(load(out).j["images"].size(), 6u);
+}
+
+TEST(Materials, WhatNeedsTangentsIsKnownForTheMeshWriter) {
+  SkinnedMesh mesh;
+  import_skinned(models("glTF2/ClearCoat-glTF/ClearCoatTest.gltf"), mesh);
+  std::map<std::string, bool> needs;
+  for (const Material& m : materials(mesh)) needs[m.name] = needs_tangent_space(m);
+  EXPECT_FALSE(needs.at("Simple_Coated"));
+  EXPECT_TRUE(needs.at("BaseNorm_Base")) << "a normal map";
+  EXPECT_TRUE(needs.at("CoatNorm_Coated")) << "a clear-coat normal map";
+  EXPECT_FALSE(needs_tangent_space(Material{}));
 }
 
 TEST(Materials, TextureTransformsSamplersAndEachFacesMaterialComeThrough) {

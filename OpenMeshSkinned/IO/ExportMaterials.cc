@@ -81,11 +81,13 @@ class Writer {
 public:
   Writer(BufferWriter& buf, tinygltf::Model& model) : buf_(buf), model_(model) {}
 
-  int image(const Image& img) {
+  int image(const std::shared_ptr<const Image>& shared) {
+    if (auto it = by_pointer_.find(shared.get()); it != by_pointer_.end()) return it->second;
+    const Image& img = *shared;
     const size_t h = std::hash<std::string_view>()(
         std::string_view(reinterpret_cast<const char*>(img.data.data()), img.data.size()));
     for (int i : images_[h])
-      if (model_.images[i].mimeType == img.mime_type && *image_bytes_[i] == img.data) return i;
+      if (model_.images[i].mimeType == img.mime_type && *image_bytes_[i] == img.data) return by_pointer_[&img] = i;
     // Inside the file (a buffer view), so that the LOD carries its textures wherever it goes.
     tinygltf::Image gi;
     gi.name = img.name;
@@ -95,7 +97,7 @@ public:
     const int i = int(model_.images.size()) - 1;
     images_[h].push_back(i);
     image_bytes_[i] = &img.data;
-    return i;
+    return by_pointer_[&img] = i;
   }
 
   int sampler(const std::string& text) {
@@ -197,6 +199,7 @@ private:
   tinygltf::Model& model_;
   std::unordered_map<size_t, std::vector<int>> images_;  // hash of the bytes -> images
   std::map<int, const std::vector<unsigned char>*> image_bytes_;
+  std::map<const Image*, int> by_pointer_;  // the materials' own sharing, checked first
   std::map<std::string, int> samplers_, textures_;
 };
 

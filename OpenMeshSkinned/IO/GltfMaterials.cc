@@ -81,11 +81,13 @@ public:
   Resources(const json& doc, std::string bin, std::string source_dir)
       : doc_(doc), bin_(std::move(bin)), dir_(std::move(source_dir)) {}
 
-  bool image(int i, Image& out, std::string& problem) {
+  bool image(int i, std::shared_ptr<const Image>& out, std::string& problem) {
     auto it = images_.find(i);
     if (it == images_.end()) {
       Entry e;
-      e.ok = read_image(i, e.image, e.problem);
+      Image img;
+      e.ok = read_image(i, img, e.problem);
+      e.image = std::make_shared<const Image>(std::move(img));
       it = images_.emplace(i, std::move(e)).first;
     }
     out = it->second.image;
@@ -96,7 +98,7 @@ public:
 private:
   struct Entry {
     bool ok = false;
-    Image image;
+    std::shared_ptr<const Image> image;
     std::string problem;
   };
 
@@ -272,6 +274,19 @@ void gltf_extension_names(const std::string& json_text, std::set<std::string>& n
   if (!j.is_discarded()) extension_names(j, names);
 }
 
+bool needs_tangent_space(const Material& m) {
+  if (m.gltf.empty()) return false;
+  json g = json::parse(m.gltf, nullptr, false);
+  if (g.is_discarded()) return false;
+  bool needs =
+      g.contains("extensions") && g["extensions"].is_object() && g["extensions"].contains("KHR_materials_anisotropy");
+  each_texture_info(g, [&](json&, const std::string& key) {
+    needs |= key == "normalTexture" || (key.size() > 13 && key.compare(key.size() - 13, 13, "NormalTexture") == 0);
+    return true;
+  });
+  return needs;
+}
+
 bool read_gltf_materials(const std::string& read_path, const std::string& source, std::vector<Material>& out,
                          std::vector<int>& reader_order, std::vector<std::string>& warnings) {
   json doc;
@@ -331,7 +346,7 @@ bool read_gltf_materials(const std::string& read_path, const std::string& source
             if (!ok) break;
             const int i = src->is_number_integer() ? src->get<int>() : -1;
             if (!image_local.count(i)) {
-              Image img;
+              std::shared_ptr<const Image> img;
               if (!(ok = res.image(i, img, problem))) break;
               image_local[i] = int(tex.images.size());
               tex.images.push_back(std::move(img));
@@ -363,7 +378,7 @@ bool read_gltf_materials(const std::string& read_path, const std::string& source
         const json& pbr = m["pbrMetallicRoughness"];
         if (pbr.contains("baseColorTexture")) {
           const Texture& bt = mat.textures[pbr["baseColorTexture"]["index"].get<size_t>()];
-          mat.base_color_texture = bt.images.empty() ? "texture" : bt.images.front().name;
+          mat.base_color_texture = bt.images.empty() ? "texture" : bt.images.front()->name;
         }
         if (pbr.empty()) m.erase("pbrMetallicRoughness");
       }

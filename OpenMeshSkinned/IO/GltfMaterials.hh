@@ -26,6 +26,11 @@ namespace OpenMeshSkinned {
 bool read_gltf_materials(const std::string& read_path, const std::string& source, std::vector<Material>& out,
                          std::vector<int>& reader_order, std::vector<std::string>& warnings);
 
+/** Whether \p m needs its primitives to carry tangents (the glTF validator's rule): a normal map, or a
+ *  normal map of an extension (KHR_materials_clearcoat's clearcoatNormalTexture), or
+ *  KHR_materials_anisotropy. A mesh writer generates them (MikkTSpace) where the input has none. */
+bool needs_tangent_space(const Material& m);
+
 /// Adds to \p names the name of every extension the glTF JSON \p json_text uses (every "extensions" object's keys).
 void gltf_extension_names(const std::string& json_text, std::set<std::string>& names);
 

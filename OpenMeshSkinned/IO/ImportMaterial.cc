@@ -137,7 +137,7 @@ public:
   // A texture reference to \p f's image (or \p image, made from it) as glTF has it.
   json reference(const Found& f, const Image* image = nullptr) {
     Texture tex;
-    tex.images.push_back(image ? *image : f.image);
+    tex.images.push_back(std::make_shared<const Image>(image ? *image : f.image));
     tex.gltf = json{{"source", 0}}.dump();
     auto wrap = [](int mode) {
       return mode == aiTextureMapMode_Clamp ? 33071 : mode == aiTextureMapMode_Mirror ? 33648 : 10497;

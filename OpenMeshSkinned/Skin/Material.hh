@@ -4,6 +4,7 @@
  *  itself (from a glTF input as the file has it, from other formats mapped to glTF PBR on the way in).
  */
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -22,7 +23,8 @@ struct Texture {
   /// (KHR_texture_basisu, EXT_texture_webp) index \ref images.
   std::string gltf = "{}";
   std::string sampler;  ///< the glTF sampler object as JSON; empty: none (repeat, the viewer's filters)
-  std::vector<Image> images;
+  /// Shared by every texture that shows the same image of the input (an atlas may serve many materials).
+  std::vector<std::shared_ptr<const Image>> images;
 };
 
 /// A material as it came in, kept so that the exported LODs look like the input.
