@@ -473,6 +473,56 @@ TEST(Materials, ATwoSidedColladaMaterialBecomesDoubleSided) {
   EXPECT_EQ(double_sided, std::vector<std::string>{"top"});
 }
 
+// An OBJ quad whose material has the given extra .mtl lines (a base-colour map always).
+json obj_material(const fs::path& dir, const std::string& mtl_lines, std::vector<std::string>& warnings) {
+  std::ofstream(dir / "quad.obj") << "mtllib quad.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n"
+                                     "vt 0 1\nusemtl m\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n";
+  std::ofstream(dir / "quad.mtl") << "newmtl m\nKd 0.5 0.5 0.5\nmap_Kd base.png\n" << mtl_lines;
+  write_png(dir / "base.png", 4, 4, [](int, int) { return std::array<uchar, 4>{90, 80, 70, 255}; });
+  SkinnedMesh mesh;
+  warnings = import_skinned((dir / "quad.obj").string(), mesh).warnings;
+  for (const Material& m : materials(mesh))
+    if (m.name == "m") return json::parse(m.gltf);
+  ADD_FAILURE() << "no material m";
+  return json();
+}
+
+bool said(const std::vector<std::string>& warnings, const std::string& what) {
+  for (const auto& w : warnings)
+    if (w.find(what) != std::string::npos) return true;
+  return false;
+}
+
+TEST(Materials, ABumpMapIsANormalMapOnlyWhenItsPixelsAreOne) {
+  const fs::path dir = scratch("obj_bump");
+  write_png(dir / "nrm.png", 8, 8, [](int x, int y) {
+    return std::array<uchar, 4>{uchar(110 + 4 * x), uchar(110 + 4 * y), 240, 255};
+  });
+  write_png(dir / "height.png", 8, 8, [](int x, int) {
+    return std::array<uchar, 4>{uchar(30 * x), uchar(30 * x), uchar(30 * x), 255};
+  });
+  std::vector<std::string> warnings;
+  const json normal = obj_material(dir, "map_bump nrm.png\n", warnings);
+  EXPECT_TRUE(normal.contains("normalTexture"));
+  const json height = obj_material(dir, "map_bump height.png\n", warnings);
+  EXPECT_FALSE(height.contains("normalTexture"));
+  EXPECT_TRUE(said(warnings, "height map \"height.png\" of material \"m\" is not a normal map"));
+}
+
+TEST(Materials, OpacityMakesBlendAndMapsWithoutAPlaceInGltfAreNamed) {
+  const fs::path dir = scratch("obj_alpha");
+  write_png(dir / "spec.png", 2, 2, [](int, int) { return std::array<uchar, 4>{255, 255, 255, 255}; });
+  std::vector<std::string> warnings;
+  const json m = obj_material(dir, "d 0.4\nmap_Ks spec.png\n", warnings);
+  EXPECT_EQ(m["alphaMode"], "BLEND");
+  EXPECT_TRUE(m["pbrMetallicRoughness"].contains("baseColorTexture"));
+  EXPECT_TRUE(said(warnings, "specular map \"spec.png\""));
+  SkinnedMesh mesh;
+  import_skinned((dir / "quad.obj").string(), mesh);
+  for (const Material& mat : materials(mesh))
+    if (mat.name == "m") EXPECT_NEAR(mat.base_color[3], 0.4, 1e-6) << "the opacity is the base colour's alpha";
+}
+
 TEST(Materials, ImageFormatsAreRecognisedByTheirBytes) {
   auto bytes = [](const std::string& s) { return std::vector<unsigned char>(s.begin(), s.end()); };
   EXPECT_EQ(gltf_mime_type(bytes(tiny_ktx2())), "image/ktx2");
