@@ -25,7 +25,7 @@ uint32_t le32(const std::string& s, size_t at) {
 }
 
 // The JSON of a .gltf or .glb and a GLB's binary chunk; false when the file is not glTF 2.0.
-bool load_document(const std::string& path, json& doc, std::string& bin) {
+bool load_document(const std::string& path, json& doc, std::vector<unsigned char>& bin) {
   std::string ext = fs::path(path).extension().string();
   for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
   if (ext != ".gltf" && ext != ".glb") return false;
@@ -37,7 +37,7 @@ bool load_document(const std::string& path, json& doc, std::string& bin) {
     doc = json::parse(data.begin() + 20, data.begin() + 20 + json_len, nullptr, false);
     const size_t at = 20 + json_len;
     if (at + 8 <= data.size() && data.compare(at + 4, 4, std::string("BIN\0", 4)) == 0)
-      bin = data.substr(at + 8, std::min<size_t>(le32(data, at), data.size() - at - 8));
+      bin.assign(data.begin() + at + 8, data.begin() + at + 8 + std::min<size_t>(le32(data, at), data.size() - at - 8));
   } else {
     doc = json::parse(data, nullptr, false);
   }
@@ -78,7 +78,7 @@ bool data_uri(const std::string& uri, std::vector<unsigned char>& bytes) {
 // The file's buffers and images, each read once however many materials use it.
 class Resources {
 public:
-  Resources(const json& doc, std::string bin, std::string source_dir)
+  Resources(const json& doc, std::vector<unsigned char> bin, std::string source_dir)
       : doc_(doc), bin_(std::move(bin)), dir_(std::move(source_dir)) {}
 
   bool image(int i, std::shared_ptr<const Image>& out, std::string& problem) {
@@ -120,14 +120,18 @@ private:
     }
     std::vector<unsigned char> bytes;
     if (!buf->contains("uri")) {
-      bytes.assign(bin_.begin(), bin_.end());  // the GLB's own binary chunk
-    } else {
-      const std::string uri = buf->value("uri", "");
-      std::string name;
-      if (!data_uri(uri, bytes) && !find_texture_file(percent_decode(uri), dir_, bytes, name, problem)) {
-        problem = "its buffer \"" + uri + "\" is " + problem;
+      if (b != 0 || bin_.empty()) {  // only a GLB's first buffer is its binary chunk
+        problem = "its buffer " + std::to_string(b) + " has no data";
         return false;
       }
+      out = &bin_;
+      return true;
+    }
+    const std::string uri = buf->value("uri", "");
+    std::string name;
+    if (!data_uri(uri, bytes) && !find_texture_file(percent_decode(uri), dir_, bytes, name, problem)) {
+      problem = "its buffer \"" + uri + "\" is " + problem;
+      return false;
     }
     out = &(buffers_[b] = std::move(bytes));
     return true;
@@ -182,7 +186,7 @@ private:
   }
 
   const json& doc_;
-  const std::string bin_;
+  const std::vector<unsigned char> bin_;
   const std::string dir_;
   std::map<int, std::vector<unsigned char>> buffers_;
   std::map<int, Entry> images_;
@@ -290,7 +294,7 @@ bool needs_tangent_space(const Material& m) {
 bool read_gltf_materials(const std::string& read_path, const std::string& source, std::vector<Material>& out,
                          std::vector<int>& reader_order, std::vector<std::string>& warnings) {
   json doc;
-  std::string bin;
+  std::vector<unsigned char> bin;
   if (!load_document(read_path, doc, bin)) return false;
   try {
     std::set<std::string> required;
