@@ -291,9 +291,10 @@ TEST(Materials, EveryFieldOfAGltfMaterialAndItsImagesComeThroughAsTheInputHasThe
   const fs::path dir = scratch("pbr_skin");
   const fs::path input = pbr_skin(dir);
   EXPECT_TRUE(validator_errors(input.string()).empty()) << "the fixture itself is valid";
-  for (const char* name : {"lod.glb", "lod.gltf"}) {
+  lod_of(input.string(), dir / "chain.glb", "--lods 0.75,0.5");
+  lod_of(input.string(), dir / "lod.gltf", "--ratio 0.5");
+  for (const char* name : {"chain_lod1.glb", "chain_lod2.glb", "lod.gltf"}) {
     const fs::path out = dir / name;
-    lod_of(input.string(), out, "--ratio 0.5");
     expect_same_materials(input, out);
     EXPECT_TRUE(validator_errors(out.string()).empty()) << out;
     const Doc o = load(out);
