@@ -169,6 +169,12 @@ std::map<std::string, size_t> triangles_per_material(const fs::path& file) {
   return n;
 }
 
+bool said(const std::vector<std::string>& warnings, const std::string& what) {
+  for (const auto& w : warnings)
+    if (w.find(what) != std::string::npos) return true;
+  return false;
+}
+
 void lod_of(const std::string& input, const fs::path& out, const std::string& args = "--ratio 0.5") {
   const auto r = omsk_test::run_command(OMSK_CLI_EXE, "'" + input + "' -o '" + out.string() + "' " + args + " --quiet",
                                         out.parent_path());
@@ -390,6 +396,24 @@ TEST(Materials, AMissingGltfImageIsOneWarningAndTheMaterialKeepsTheRest) {
   EXPECT_FALSE(o.j.contains("images"));
 }
 
+TEST(Materials, AGltfImageAtAnAbsoluteWindowsPathIsFoundBesideTheInput) {
+  const fs::path dir = scratch("windows");
+  std::string text = read_file(models("glTF2/BoxTextured-glTF/BoxTextured.gltf"));
+  const std::string from = "\"CesiumLogoFlat.png\"";
+  ASSERT_NE(text.find(from), std::string::npos);
+  text.replace(text.find(from), from.size(), "\"C:\\\\Users\\\\artist\\\\CesiumLogoFlat.png\"");
+  std::ofstream(dir / "BoxTextured.gltf") << text;
+  fs::copy_file(models("glTF2/BoxTextured-glTF/BoxTextured0.bin"), dir / "BoxTextured0.bin");
+  fs::copy_file(models("glTF2/BoxTextured-glTF/CesiumLogoFlat.png"), dir / "CesiumLogoFlat.png");
+  SkinnedMesh mesh;
+  const auto rep = import_skinned((dir / "BoxTextured.gltf").string(), mesh);
+  EXPECT_FALSE(said(rep.warnings, "CesiumLogoFlat.png"));
+  const Material& m = materials(mesh).at(0);
+  ASSERT_EQ(m.textures.size(), 1u);
+  const std::string png = read_file(dir / "CesiumLogoFlat.png");
+  EXPECT_EQ(m.textures[0].images.at(0)->data, std::vector<unsigned char>(png.begin(), png.end()));
+}
+
 TEST(Materials, FbxMetalRoughMapsAndFactorsBecomeGltfPbr) {
   const fs::path dir = scratch("fbx");
   fs::copy_file(models("FBX/maxPbrMaterial_metalRough.fbx"), dir / "pbr.fbx");
@@ -488,12 +512,6 @@ json obj_material(const fs::path& dir, const std::string& mtl_lines, std::vector
   return json();
 }
 
-bool said(const std::vector<std::string>& warnings, const std::string& what) {
-  for (const auto& w : warnings)
-    if (w.find(what) != std::string::npos) return true;
-  return false;
-}
-
 TEST(Materials, ABumpMapIsANormalMapOnlyWhenItsPixelsAreOne) {
   const fs::path dir = scratch("obj_bump");
   write_png(dir / "nrm.png", 8, 8, [](int x, int y) {
@@ -521,7 +539,9 @@ TEST(Materials, OpacityMakesBlendAndMapsWithoutAPlaceInGltfAreNamed) {
   SkinnedMesh mesh;
   import_skinned((dir / "quad.obj").string(), mesh);
   for (const Material& mat : materials(mesh))
-    if (mat.name == "m") EXPECT_NEAR(mat.base_color[3], 0.4, 1e-6) << "the opacity is the base colour's alpha";
+    if (mat.name == "m") {
+      EXPECT_NEAR(mat.base_color[3], 0.4, 1e-6) << "the opacity is the base colour's alpha";
+    }
 }
 
 TEST(Materials, ImageFormatsAreRecognisedByTheirBytes) {
