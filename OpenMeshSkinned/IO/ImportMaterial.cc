@@ -362,6 +362,7 @@ Material Mapper::map() {
 
   // Maps with no place in glTF PBR, named in one line.
   std::string dropped;
+  int n_dropped = 0;
   const std::pair<aiTextureType, const char*> unmapped[] = {{aiTextureType_SPECULAR, "specular"},
                                                             {aiTextureType_AMBIENT, "ambient"},
                                                             {aiTextureType_DISPLACEMENT, "displacement"},
@@ -371,10 +372,13 @@ Material Mapper::map() {
                                                             {aiTextureType_TRANSMISSION, "transmission"}};
   for (const auto& [type, what] : unmapped) {
     std::string stored;
-    if (named(type, stored)) dropped += (dropped.empty() ? "" : ", ") + std::string(what) + " map \"" + stored + "\"";
+    if (!named(type, stored)) continue;
+    dropped += (dropped.empty() ? "" : ", ") + std::string(what) + " map \"" + stored + "\"";
+    ++n_dropped;
   }
   if (!dropped.empty())
-    warnings_.push_back("material \"" + out.name + "\": its " + dropped + " have no place in glTF PBR: dropped");
+    warnings_.push_back("material \"" + out.name + "\": its " + dropped + (n_dropped > 1 ? " have" : " has") +
+                        " no place in glTF PBR: dropped");
   out.gltf = g.dump();
   return out;
 }
