@@ -137,8 +137,10 @@ TEST(Textures, AnMd2ThatNamesNoSkinTextureGetsTheOneImageNamedAfterIt) {
   const auto& mats = OpenMeshSkinned::materials(mesh);
   ASSERT_EQ(mats.size(), 1u);
   EXPECT_EQ(mats[0].base_color_texture, "faerie2.bmp");
-  EXPECT_EQ(mats[0].base_color_image.mime_type, "image/png");
-  EXPECT_FALSE(mats[0].base_color_image.data.empty());
+  ASSERT_EQ(mats[0].textures.size(), 1u);
+  ASSERT_EQ(mats[0].textures[0].images.size(), 1u);
+  EXPECT_EQ(mats[0].textures[0].images[0]->mime_type, "image/png");
+  EXPECT_FALSE(mats[0].textures[0].images[0]->data.empty());
   bool said = false;
   for (const auto& w : rep.warnings) said |= w.find("using faerie2.bmp") != std::string::npos;
   EXPECT_TRUE(said);

@@ -1,5 +1,6 @@
 #include "OpenMeshSkinned/IO/ExportGltf.hh"
 
+#include "OpenMeshSkinned/IO/ExportMaterials.hh"
 #include "OpenMeshSkinned/IO/ExportParts.hh"
 
 #include "OpenMeshSkinned/Skin/Morph.hh"
@@ -82,25 +83,7 @@ void export_gltf(const SkinnedMesh& mesh, const std::string& path) {
   for (int i = 0; i < n_joints; ++i) skin.joints.push_back(i);
   model.skins.push_back(skin);
 
-  for (const Material& m : mats) {
-    tinygltf::Material gm;
-    gm.name = m.name;
-    gm.pbrMetallicRoughness.baseColorFactor = {m.base_color[0], m.base_color[1], m.base_color[2], m.base_color[3]};
-    gm.pbrMetallicRoughness.metallicFactor = 0.0;
-    if (!m.base_color_image.data.empty()) {
-      // Inside the file (a buffer view), so that the LOD carries its textures wherever it goes.
-      tinygltf::Image img;
-      img.name = m.base_color_image.name;
-      img.mimeType = m.base_color_image.mime_type;
-      img.bufferView = buf.add_view(m.base_color_image.data);
-      model.images.push_back(img);
-      tinygltf::Texture tex;
-      tex.source = static_cast<int>(model.images.size()) - 1;
-      model.textures.push_back(tex);
-      gm.pbrMetallicRoughness.baseColorTexture.index = static_cast<int>(model.textures.size()) - 1;
-    }
-    model.materials.push_back(gm);
-  }
+  detail::write_materials(mats, buf, model);
 
   model.meshes.push_back(detail::write_mesh(mesh, buf, path));
 

@@ -219,8 +219,7 @@ ImportReport detail::import_scene(const std::string& path, const std::string& re
   rep.rigid = !joints.any_bones();
   if (rep.rigid) rep.warnings.push_back("no skin in the file: every mesh is bound rigidly to its node");
 
-  for (unsigned m = 0; m < scene->mNumMaterials; ++m)
-    materials(mesh).push_back(read_material(scene, scene->mMaterials[m], path, rep.warnings));
+  materials(mesh) = read_materials(scene, path, read_path, rep.warnings);
   const std::vector<size_t> target_base = read_morph_targets(scene, instances, mesh, path);
   rep.morph_targets = morph_targets(mesh).size();
   {

@@ -5,6 +5,7 @@
 
 #include <cereal/archives/binary.hpp>
 #include <cereal/types/array.hpp>
+#include <cereal/types/memory.hpp>
 #include <cereal/types/string.hpp>
 #include <cereal/types/vector.hpp>
 
@@ -60,8 +61,12 @@ void serialize(Ar& ar, Image& i) {
   ar(i.name, i.mime_type, i.data);
 }
 template <class Ar>
+void serialize(Ar& ar, Texture& t) {
+  ar(t.gltf, t.sampler, t.images);
+}
+template <class Ar>
 void serialize(Ar& ar, Material& m) {
-  ar(m.name, m.base_color, m.base_color_texture, m.base_color_image);
+  ar(m.name, m.base_color, m.base_color_texture, m.gltf, m.textures, m.required_extensions);
 }
 template <class Ar>
 void serialize(Ar& ar, ImportReport& r) {

@@ -59,7 +59,27 @@ bool encode_for_gltf(const std::vector<unsigned char>& bytes, const std::string&
   return ok;
 }
 
-bool read_texture_file(const std::string& stored, const std::string& source_dir, Image& out, std::string& problem) {
+std::string gltf_mime_type(const std::vector<unsigned char>& b) {
+  if (starts_with(b, {0x89, 'P', 'N', 'G'})) return "image/png";
+  if (starts_with(b, {0xFF, 0xD8, 0xFF})) return "image/jpeg";
+  if (starts_with(b, {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB})) return "image/ktx2";
+  if (b.size() >= 12 && starts_with(b, {'R', 'I', 'F', 'F'}) && std::equal(b.begin() + 8, b.begin() + 12, "WEBP"))
+    return "image/webp";
+  return "";
+}
+
+bool decode_rgba(const Image& image, std::vector<unsigned char>& rgba, int& width, int& height) {
+  int n = 0;
+  unsigned char* px =
+      stbi_load_from_memory(image.data.data(), static_cast<int>(image.data.size()), &width, &height, &n, 4);
+  if (!px) return false;
+  rgba.assign(px, px + size_t(width) * height * 4);
+  stbi_image_free(px);
+  return true;
+}
+
+bool find_texture_file(const std::string& stored, const std::string& source_dir, std::vector<unsigned char>& bytes,
+                       std::string& name, std::string& problem) {
   namespace fs = std::filesystem;
   std::string norm = stored;
   std::replace(norm.begin(), norm.end(), '\\', '/');
@@ -67,19 +87,16 @@ bool read_texture_file(const std::string& stored, const std::string& source_dir,
   const fs::path as_stored(norm);
   candidates.push_back(as_stored.is_absolute() ? as_stored : fs::path(source_dir) / as_stored);
   // Windows paths ("C:/work/x.png") and paths from another machine: the file's name beside the source.
-  const std::string base = norm.substr(norm.find_last_of('/') + 1);
-  if (!base.empty()) candidates.push_back(fs::path(source_dir) / base);
+  name = norm.substr(norm.find_last_of('/') + 1);
+  if (!name.empty() && fs::path(source_dir) / name != candidates.front())
+    candidates.push_back(fs::path(source_dir) / name);
   for (const fs::path& p : candidates) {
     std::error_code ec;
     if (!fs::is_regular_file(p, ec)) continue;
     std::ifstream in(p, std::ios::binary);
-    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
     if (bytes.empty()) {
       problem = p.string() + " is empty";
-      return false;
-    }
-    if (!encode_for_gltf(bytes, base, out, problem)) {
-      problem = p.string() + ": " + problem;
       return false;
     }
     return true;
@@ -87,6 +104,17 @@ bool read_texture_file(const std::string& stored, const std::string& source_dir,
   problem = "not found (looked for " + candidates.front().string() +
             (candidates.size() > 1 ? " and " + candidates.back().string() : std::string()) + ")";
   return false;
+}
+
+bool read_texture_file(const std::string& stored, const std::string& source_dir, Image& out, std::string& problem) {
+  std::vector<unsigned char> bytes;
+  std::string name;
+  if (!find_texture_file(stored, source_dir, bytes, name, problem)) return false;
+  if (!encode_for_gltf(bytes, name, out, problem)) {
+    problem = name + ": " + problem;
+    return false;
+  }
+  return true;
 }
 
 }  // namespace OpenMeshSkinned

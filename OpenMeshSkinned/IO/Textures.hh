@@ -12,6 +12,13 @@
 
 namespace OpenMeshSkinned {
 
+/** The image format glTF names for \p bytes, from their first bytes: "image/png", "image/jpeg",
+ *  "image/ktx2" (KHR_texture_basisu), "image/webp" (EXT_texture_webp); "" for any other. */
+std::string gltf_mime_type(const std::vector<unsigned char>& bytes);
+
+/** Decodes \p image (any format stb_image reads) into 8-bit RGBA texels; false when it cannot. */
+bool decode_rgba(const Image& image, std::vector<unsigned char>& rgba, int& width, int& height);
+
 /** Makes a glTF-ready image from an encoded file's bytes: PNG and JPEG are kept as they are, any other
  *  format stb_image reads is re-encoded as PNG. Returns false and says why in \p problem otherwise. */
 bool encode_for_gltf(const std::vector<unsigned char>& bytes, const std::string& name, Image& out,
@@ -25,5 +32,10 @@ bool encode_rgba_png(const unsigned char* rgba, int width, int height, const std
  *  exists (relative ones against \p source_dir), otherwise the file's base name in \p source_dir.
  *  Returns false and says why in \p problem when no readable image is found. */
 bool read_texture_file(const std::string& stored, const std::string& source_dir, Image& out, std::string& problem);
+
+/** Finds the file read_texture_file() reads and returns its bytes as they are in \p bytes and its base
+ *  name in \p name. */
+bool find_texture_file(const std::string& stored, const std::string& source_dir, std::vector<unsigned char>& bytes,
+                       std::string& name, std::string& problem);
 
 }  // namespace OpenMeshSkinned
