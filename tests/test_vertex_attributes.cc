@@ -10,12 +10,17 @@
 #include <OpenMeshSkinned/Mesh/CornerAttributes.hh>
 #include <OpenMeshSkinned/Skin/Morph.hh>
 
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
 #include <gtest/gtest.h>
+#include <assimp/Importer.hpp>
+
 #include <Eigen/Geometry>
 
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <set>
 
 namespace fs = std::filesystem;
 using namespace OpenMeshSkinned;
@@ -288,4 +293,37 @@ TEST(VertexAttributes, AnimatedMorphCubeKeepsItsMorphNormalsAtRatioOne) {
   }
   // At full weight a viewer shades each target with the input's normals (flat faces: recomputed exactly).
   EXPECT_LT(worst * 180.0 / M_PI, 0.1);
+}
+
+TEST(VertexAttributes, RgbColoursOfAnotherFormatComeOutAsVec3WithTheInputsValues) {
+  // An X file with per-vertex colours (assimp reports them with alpha 1), kept whole at --ratio 1.
+  const std::string in = std::string(OMSK_TEST_MODELS) + "/X/kwxport_test_cubewithvcolors.x";
+  std::set<std::array<float, 3>> expected;
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFile(in, aiProcess_Triangulate);
+  ASSERT_NE(scene, nullptr);
+  for (unsigned m = 0; m < scene->mNumMeshes; ++m) {
+    const aiMesh* am = scene->mMeshes[m];
+    ASSERT_TRUE(am->HasVertexColors(0));
+    for (unsigned v = 0; v < am->mNumVertices; ++v) {
+      EXPECT_EQ(am->mColors[0][v].a, 1.0f);
+      expected.insert({am->mColors[0][v].r, am->mColors[0][v].g, am->mColors[0][v].b});
+    }
+  }
+  const fs::path d = omsk_test::scratch_dir("vertex_attributes", "rgb");
+  const auto r = omsk_test::run_command(OMSK_CLI_EXE, "'" + in + "' -o cube.glb --ratio 1 --quiet", d);
+  ASSERT_EQ(r.code, 0) << r.out;
+  omsk_test::expect_valid_gltf((d / "cube.glb").string());
+  const tinygltf::Model m = omsk_spec::load((d / "cube.glb").string());
+  std::set<std::array<float, 3>> written;
+  for (const auto& mesh : m.meshes)
+    for (const auto& prim : mesh.primitives) {
+      ASSERT_TRUE(prim.attributes.count("COLOR_0"));
+      EXPECT_FALSE(prim.attributes.count("COLOR_1")) << "only the sets the input had";
+      EXPECT_FALSE(prim.attributes.count("TEXCOORD_1"));
+      ASSERT_EQ(m.accessors[prim.attributes.at("COLOR_0")].type, TINYGLTF_TYPE_VEC3);
+      const std::vector<double> c = omsk_spec::read(m, prim.attributes.at("COLOR_0"));
+      for (size_t i = 0; i + 2 < c.size(); i += 3) written.insert({float(c[i]), float(c[i + 1]), float(c[i + 2])});
+    }
+  EXPECT_EQ(written, expected);
 }

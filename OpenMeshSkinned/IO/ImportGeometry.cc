@@ -219,9 +219,12 @@ void GeometryBuilder::note_dropped(const aiMesh* am) {
          "tangents when TANGENT is absent");
   if (target_attributes)
     warn(target_warning_, "morph targets' colour and UV offsets are not kept (position and normal offsets are)");
+  // Readers report a third component for some 2D sets (Collada): only a non-zero w is lost.
+  bool uvw = false;
   for (unsigned n = 0; n < AI_MAX_NUMBER_OF_TEXTURECOORDS; ++n)
     if (am->HasTextureCoords(n) && am->mNumUVComponents[n] > 2)
-      warn(uvw_warning_, "3D texture coordinates: only u and v are kept (glTF has 2D UV sets)");
+      for (unsigned v = 0; v < am->mNumVertices && !uvw; ++v) uvw = am->mTextureCoords[n][v].z != 0.0f;
+  if (uvw) warn(uvw_warning_, "3D texture coordinates: only u and v are kept (glTF has 2D UV sets)");
   if (clamped_colours_ > 0)
     warn(clamp_warning_,
          std::to_string(clamped_colours_) + " vertex colour components outside [0, 1] (or not finite) clamped");
