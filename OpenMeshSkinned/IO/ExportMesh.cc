@@ -38,11 +38,11 @@ struct Written {
 };
 
 // TEXCOORD_n and COLOR_n must be numbered 0, 1, ... without gaps: sets are renumbered in order (UV sets
-// after TEXCOORD_0). Colours are VEC4, or VEC3 when every alpha is 1 (as assimp reports RGB colours), which
-// says the same thing in less space.
-std::vector<Written> written_sets(const SkinnedMesh& mesh) {
+// from \p first_uv, after TEXCOORD_0 when it is written). Colours are VEC4, or VEC3 when every alpha is 1
+// (as assimp reports RGB colours), which says the same thing in less space.
+std::vector<Written> written_sets(const SkinnedMesh& mesh, int first_uv) {
   std::vector<Written> out;
-  int n_uv = 1, n_color = 0;
+  int n_uv = first_uv, n_color = 0;
   for (const CornerChannel& c : corner_channels(mesh)) {
     if (c.kind == CornerKind::TexCoord) {
       out.push_back({c, "TEXCOORD_" + std::to_string(n_uv++), 2});
@@ -136,12 +136,12 @@ tinygltf::Mesh write_mesh(const SkinnedMesh& mesh, BufferWriter& buf, const std:
     throw fail("a vertex has more than " + std::to_string(Influences::kCapacity) + " influences");
   const int slots = 4 * ((max_influences + 3) / 4);  // whole JOINTS_n/WEIGHTS_n sets of four
   const bool has_n = mesh.has_halfedge_normals();
-  const std::vector<Written> sets = written_sets(mesh);
+  const std::vector<CornerChannel> channels = corner_channels(mesh);
   const bool has_uv = [&] {
     if (!mesh.has_halfedge_texcoords2D()) return false;
     // TEXCOORD_1 needs a TEXCOORD_0, zero or not.
-    for (const Written& w : sets)
-      if (w.channel.kind == CornerKind::TexCoord) return true;
+    for (const CornerChannel& c : channels)
+      if (c.kind == CornerKind::TexCoord) return true;
     for (auto heh : mesh.halfedges()) {
       if (mesh.is_boundary(heh)) continue;  // no face, no corner: its UV is never set
       const auto t = mesh.texcoord2D(heh);
@@ -149,6 +149,7 @@ tinygltf::Mesh write_mesh(const SkinnedMesh& mesh, BufferWriter& buf, const std:
     }
     return false;
   }();
+  const std::vector<Written> sets = written_sets(mesh, has_uv ? 1 : 0);
 
   OpenMesh::VPropHandleT<float> h_error;
   const bool has_error = mesh.get_property_handle(h_error, kVertexErrorProperty);
