@@ -327,3 +327,38 @@ TEST(VertexAttributes, RgbColoursOfAnotherFormatComeOutAsVec3WithTheInputsValues
     }
   EXPECT_EQ(written, expected);
 }
+
+TEST(VertexAttributes, PartsOfTheInputWithoutColoursAreWhiteNotUndefined) {
+  // Two skinned meshes, only the first painted: merged into one, the second's corners get white, which is
+  // how a viewer showed that mesh without COLOR_0.
+  const fs::path d = omsk_test::scratch_dir("vertex_attributes", "partial");
+  tinygltf::Model m = omsk_fixtures::testwuson(d.string());
+  omsk_fixtures::split_into_second_skin(m);
+  tinygltf::Primitive& painted = m.meshes.at(0).primitives.at(0);
+  const size_t n = m.accessors[painted.attributes.at("POSITION")].count;
+  std::vector<float> colour;
+  for (size_t v = 0; v < n; ++v) colour.insert(colour.end(), {0.5f, 0.25f, 0.0f, 1.0f});
+  painted.attributes["COLOR_0"] = omsk_fixtures::add_accessor(m, colour, TINYGLTF_TYPE_VEC4, n);
+  ASSERT_EQ(m.meshes.size(), 2u);
+  ASSERT_FALSE(m.meshes[1].primitives.at(0).attributes.count("COLOR_0"));
+  const std::string in = (d / "partly_painted.glb").string();
+  omsk_spec::save_glb(m, in);
+
+  SkinnedMesh mesh;
+  import_skinned(in, mesh);
+  const std::vector<CornerChannel> sets = corner_channels(mesh);
+  ASSERT_EQ(sets.size(), 1u);
+  size_t white = 0, painted_corners = 0;
+  for (auto fh : mesh.faces())
+    for (auto h : mesh.fh_range(fh)) {
+      const OpenMesh::Vec4f c = mesh.property(sets[0].handle, h);
+      if (c == OpenMesh::Vec4f(1, 1, 1, 1))
+        ++white;
+      else if (c == OpenMesh::Vec4f(0.5f, 0.25f, 0.0f, 1.0f))
+        ++painted_corners;
+      else
+        ADD_FAILURE() << "corner colour " << c;
+    }
+  EXPECT_GT(white, mesh.n_faces());  // about half of the 3 corners per face each
+  EXPECT_GT(painted_corners, mesh.n_faces());
+}
