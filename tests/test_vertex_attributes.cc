@@ -362,3 +362,30 @@ TEST(VertexAttributes, PartsOfTheInputWithoutColoursAreWhiteNotUndefined) {
   EXPECT_GT(white, mesh.n_faces());  // about half of the 3 corners per face each
   EXPECT_GT(painted_corners, mesh.n_faces());
 }
+
+TEST(VertexAttributes, ASecondUvSetComesBackAsItWasAtRatioOne) {
+  // BoxTexcoords has TEXCOORD_0 and TEXCOORD_1: every (UV0, UV1) pair of the input is in the output and
+  // no other (both sets in glTF's top-left convention, as the file has them).
+  const std::string in = std::string(OMSK_TEST_MODELS) + "/glTF2/BoxTexcoords-glTF/boxTexcoords.gltf";
+  const fs::path d = omsk_test::scratch_dir("vertex_attributes", "uv1");
+  const auto r = omsk_test::run_command(OMSK_CLI_EXE, "'" + in + "' -o box.glb --ratio 1 --quiet", d);
+  ASSERT_EQ(r.code, 0) << r.out;
+  omsk_test::expect_valid_gltf((d / "box.glb").string());
+  auto pairs = [](const tinygltf::Model& m) {
+    std::set<std::array<long, 4>> out;
+    for (const auto& mesh : m.meshes)
+      for (const auto& prim : mesh.primitives) {
+        EXPECT_TRUE(prim.attributes.count("TEXCOORD_1"));
+        if (!prim.attributes.count("TEXCOORD_1")) continue;
+        const std::vector<double> a = omsk_spec::read(m, prim.attributes.at("TEXCOORD_0")),
+                                  b = omsk_spec::read(m, prim.attributes.at("TEXCOORD_1"));
+        for (size_t i = 0; i + 1 < a.size(); i += 2)
+          out.insert({std::lround(a[i] * 1e5), std::lround(a[i + 1] * 1e5), std::lround(b[i] * 1e5),
+                      std::lround(b[i + 1] * 1e5)});
+      }
+    return out;
+  };
+  const auto expected = pairs(omsk_spec::load(in));
+  EXPECT_FALSE(expected.empty());
+  EXPECT_EQ(pairs(omsk_spec::load((d / "box.glb").string())), expected);
+}
