@@ -1,6 +1,7 @@
 // Attribute seams (Mesh/Seams.hh): UV seams and hard edges of a welded mesh.
 #include "helpers.hh"
 
+#include <OpenMeshSkinned/Mesh/CornerAttributes.hh>
 #include <OpenMeshSkinned/Mesh/Seams.hh>
 #include <OpenMeshSkinned/Mesh/SkinnedMesh.hh>
 
@@ -90,4 +91,35 @@ TEST(Seams, AHardEdgeIsASeamASoftOneIsNot) {
   tilt(80);
   const std::vector<std::pair<double, double>> expected = {{1.0, 0.5}, {1.0, 1.5}};
   EXPECT_EQ(seam_midpoints(mesh), expected);
+}
+
+TEST(Seams, AColourBoundaryIsASeamOnEveryMaterialAUvSetOnlyOnATexturedOne) {
+  Mesh mesh = grid_with_seam();
+  clear_corner_attributes(mesh);
+  add_skin(mesh);
+  materials(mesh) = {Material{}};
+  const auto h_mat = face_material_handle(mesh);
+  for (auto fh : mesh.faces()) mesh.property(h_mat, fh) = 0;
+  // Red on the faces with y > 1, blue below: the edges on y = 1 are a colour boundary, textured or not.
+  const CornerChannel colour = add_corner_channel(mesh, CornerKind::Color, 0);
+  const CornerChannel uv1 = add_corner_channel(mesh, CornerKind::TexCoord, 1);
+  EXPECT_TRUE(seam_midpoints(mesh).empty()) << "a new set is uniform: no seam";
+  for (auto fh : mesh.faces()) {
+    bool top = true;
+    for (auto v : mesh.fv_range(fh)) top = top && mesh.point(v)[1] >= 1.0;
+    for (auto h : mesh.fh_range(fh))
+      mesh.property(colour.handle, h) = top ? OpenMesh::Vec4f(1, 0, 0, 1) : OpenMesh::Vec4f(0, 0, 1, 1);
+  }
+  const std::vector<std::pair<double, double>> y1 = {{0.5, 1.0}, {1.5, 1.0}};
+  EXPECT_EQ(seam_midpoints(mesh), y1);
+  // A second UV set with a chart edge on x = 1 shows only once the material has a texture.
+  for (auto fh : mesh.faces()) {
+    bool left = true;
+    for (auto v : mesh.fv_range(fh)) left = left && mesh.point(v)[0] <= 1.0;
+    for (auto h : mesh.fh_range(fh)) mesh.property(uv1.handle, h) = OpenMesh::Vec4f(left ? 0.f : 0.5f, 0, 0, 0);
+  }
+  EXPECT_EQ(seam_midpoints(mesh), y1);
+  materials(mesh)[0].base_color_texture = "skin.png";
+  const std::vector<std::pair<double, double>> both = {{0.5, 1.0}, {1.0, 0.5}, {1.0, 1.5}, {1.5, 1.0}};
+  EXPECT_EQ(seam_midpoints(mesh), both);
 }

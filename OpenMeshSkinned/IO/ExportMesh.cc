@@ -2,6 +2,7 @@
 
 #include "OpenMeshSkinned/IO/ExportGltf.hh"
 #include "OpenMeshSkinned/IO/IOError.hh"
+#include "OpenMeshSkinned/Mesh/CornerAttributes.hh"
 #include "OpenMeshSkinned/Mesh/Seams.hh"
 #include "OpenMeshSkinned/Skin/Morph.hh"
 #include "OpenMeshSkinned/Skin/SkinProperties.hh"
@@ -15,17 +16,57 @@ namespace OpenMeshSkinned::detail {
 
 namespace {
 
-// One glTF vertex: an OpenMesh vertex with one wedge's normal and UV.
+// One glTF vertex: an OpenMesh vertex with one wedge's normal, UV and further sets (CornerAttributes.hh).
 struct Corner {
   int vertex;
   std::array<float, 3> n;
   std::array<float, 2> uv;
+  std::vector<float> sets;  // each carried set's components, in corner_channels() order
   bool operator<(const Corner& o) const {
     if (vertex != o.vertex) return vertex < o.vertex;
     if (n != o.n) return n < o.n;
-    return uv < o.uv;
+    if (uv != o.uv) return uv < o.uv;
+    return sets < o.sets;
   }
 };
+
+// A carried set as written: its attribute name and how many components each vertex has.
+struct Written {
+  CornerChannel channel;
+  std::string attribute;
+  int components;
+};
+
+// TEXCOORD_n and COLOR_n must be numbered 0, 1, ... without gaps: sets are renumbered in order (UV sets
+// from \p first_uv, after TEXCOORD_0 when it is written). Colours are VEC4, or VEC3 when every alpha is 1
+// (as assimp reports RGB colours), which says the same thing in less space.
+std::vector<Written> written_sets(const SkinnedMesh& mesh, int first_uv) {
+  std::vector<Written> out;
+  int n_uv = first_uv, n_color = 0;
+  for (const CornerChannel& c : corner_channels(mesh)) {
+    if (c.kind == CornerKind::TexCoord) {
+      out.push_back({c, "TEXCOORD_" + std::to_string(n_uv++), 2});
+      continue;
+    }
+    bool alpha = false;
+    for (auto heh : mesh.halfedges())
+      if (!mesh.is_boundary(heh) && mesh.property(c.handle, heh)[3] != 1.0f) alpha = true;
+    out.push_back({c, "COLOR_" + std::to_string(n_color++), alpha ? 4 : 3});
+  }
+  return out;
+}
+
+// A set's value as written: UVs flipped to glTF's top-left origin like TEXCOORD_0, colours within [0, 1]
+// (interpolation can round a hair past 1), anything non-finite as the set's fallback.
+void append_set(const Written& w, OpenMesh::Vec4f x, std::vector<float>& out) {
+  for (int k = 0; k < 4; ++k)
+    if (!std::isfinite(x[k])) x = w.channel.fallback();
+  if (w.channel.kind == CornerKind::TexCoord) {
+    out.insert(out.end(), {x[0], 1.0f - x[1]});
+    return;
+  }
+  for (int k = 0; k < w.components; ++k) out.push_back(std::clamp(x[k], 0.0f, 1.0f));
+}
 
 // Weights in float, made to sum to one in float as glTF validators check it.
 void float_weights(const Influences& inf, int slots, std::vector<uint16_t>& joints, std::vector<float>& weights) {
@@ -48,8 +89,10 @@ void float_weights(const Influences& inf, int slots, std::vector<uint16_t>& join
 
 // The normal of a corner, recomputed from the geometry as it is now (a LOD's vertices have moved): the
 // area-weighted normals of the faces around the vertex whose corner carries a stored normal within 60
-// degrees of this corner's, so hard edges and normal seams of the input stay hard.
-Eigen::Vector3d corner_normal(const SkinnedMesh& mesh, SkinnedMesh::HalfedgeHandle heh) {
+// degrees of this corner's, so hard edges and normal seams of the input stay hard. \p point gives each
+// vertex's position: the rest position, or a morph target's.
+template <typename PointOf>
+Eigen::Vector3d corner_normal(const SkinnedMesh& mesh, SkinnedMesh::HalfedgeHandle heh, const PointOf& point) {
   const auto stored = mesh.normal(heh);
   const Eigen::Vector3d ref(stored[0], stored[1], stored[2]);
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
@@ -60,8 +103,8 @@ Eigen::Vector3d corner_normal(const SkinnedMesh& mesh, SkinnedMesh::HalfedgeHand
     if (ref.norm() > 0.0 && o.norm() > 0.0 && o.dot(ref) < kHardEdgeNormalCos * o.norm() * ref.norm()) continue;
     // The cross product is the face normal scaled by twice the area: area weighting without normalising
     // a degenerate face's zero vector (which gives NaN).
-    const auto p0 = mesh.point(mesh.from_vertex_handle(h)), p1 = mesh.point(mesh.to_vertex_handle(h)),
-               p2 = mesh.point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)));
+    const SkinnedMesh::Point p0 = point(mesh.from_vertex_handle(h)), p1 = point(mesh.to_vertex_handle(h)),
+                             p2 = point(mesh.to_vertex_handle(mesh.next_halfedge_handle(h)));
     const auto c = (p1 - p0) % (p2 - p0);
     sum += Eigen::Vector3d(c[0], c[1], c[2]);
   }
@@ -93,8 +136,12 @@ tinygltf::Mesh write_mesh(const SkinnedMesh& mesh, BufferWriter& buf, const std:
     throw fail("a vertex has more than " + std::to_string(Influences::kCapacity) + " influences");
   const int slots = 4 * ((max_influences + 3) / 4);  // whole JOINTS_n/WEIGHTS_n sets of four
   const bool has_n = mesh.has_halfedge_normals();
+  const std::vector<CornerChannel> channels = corner_channels(mesh);
   const bool has_uv = [&] {
     if (!mesh.has_halfedge_texcoords2D()) return false;
+    // TEXCOORD_1 needs a TEXCOORD_0, zero or not.
+    for (const CornerChannel& c : channels)
+      if (c.kind == CornerKind::TexCoord) return true;
     for (auto heh : mesh.halfedges()) {
       if (mesh.is_boundary(heh)) continue;  // no face, no corner: its UV is never set
       const auto t = mesh.texcoord2D(heh);
@@ -102,17 +149,20 @@ tinygltf::Mesh write_mesh(const SkinnedMesh& mesh, BufferWriter& buf, const std:
     }
     return false;
   }();
+  const std::vector<Written> sets = written_sets(mesh, has_uv ? 1 : 0);
 
   OpenMesh::VPropHandleT<float> h_error;
   const bool has_error = mesh.get_property_handle(h_error, kVertexErrorProperty);
 
   OpenMesh::VPropHandleT<MorphDeltas> h_delta;
   const size_t n_targets = morph_deltas_handle(mesh, h_delta) ? morph_targets(mesh).size() : 0;
+  const auto rest_point = [&mesh](SkinnedMesh::VertexHandle vh) { return mesh.point(vh); };
 
   tinygltf::Mesh gmesh;
   gmesh.name = "mesh";
   for (const auto& [mat, faces] : by_material) {
-    std::vector<std::vector<float>> deltas(n_targets);
+    std::vector<std::vector<float>> deltas(n_targets), normal_deltas(n_targets);
+    std::vector<std::vector<float>> set_values(sets.size());
     std::map<Corner, uint32_t> index_of;
     std::vector<float> pos, nrm, uv, err;
     std::vector<uint16_t> joints;
@@ -122,9 +172,10 @@ tinygltf::Mesh write_mesh(const SkinnedMesh& mesh, BufferWriter& buf, const std:
     for (auto fh : faces) {
       for (auto heh : mesh.fh_range(fh)) {
         const auto vh = mesh.to_vertex_handle(heh);
-        Corner c{vh.idx(), {0, 0, 0}, {0, 0}};
+        Corner c{vh.idx(), {0, 0, 0}, {0, 0}, {}};
+        Eigen::Vector3d n = Eigen::Vector3d::Zero();
         if (has_n) {
-          const Eigen::Vector3d n = corner_normal(mesh, heh);
+          n = corner_normal(mesh, heh, rest_point);
           c.n = {static_cast<float>(n[0]), static_cast<float>(n[1]), static_cast<float>(n[2])};
         }
         if (has_uv) {
@@ -132,6 +183,7 @@ tinygltf::Mesh write_mesh(const SkinnedMesh& mesh, BufferWriter& buf, const std:
           if (!std::isfinite(t[0]) || !std::isfinite(t[1])) t = SkinnedMesh::TexCoord2D(0, 0);
           c.uv = {t[0], 1.0f - t[1]};  // glTF's UV origin is top-left, assimp's bottom-left
         }
+        for (const Written& w : sets) append_set(w, mesh.property(w.channel.handle, heh), c.sets);
         auto [it, inserted] = index_of.emplace(c, static_cast<uint32_t>(index_of.size()));
         if (inserted) {
           const auto p = mesh.point(vh);
@@ -141,6 +193,15 @@ tinygltf::Mesh write_mesh(const SkinnedMesh& mesh, BufferWriter& buf, const std:
             const MorphDeltas& d = mesh.property(h_delta, vh);
             const Eigen::Vector3f x = t < d.size() ? d[t] : Eigen::Vector3f::Zero();
             deltas[t].insert(deltas[t].end(), {x.x(), x.y(), x.z()});
+            if (!has_n || !morph_targets(mesh)[t].normals) continue;
+            const auto morphed = [&](SkinnedMesh::VertexHandle w) {
+              const MorphDeltas& dw = mesh.property(h_delta, w);
+              const Eigen::Vector3f o = t < dw.size() ? dw[t] : Eigen::Vector3f::Zero();
+              return mesh.point(w) + SkinnedMesh::Point(o.x(), o.y(), o.z());
+            };
+            const Eigen::Vector3d dn = corner_normal(mesh, heh, morphed) - n;
+            normal_deltas[t].insert(normal_deltas[t].end(),
+                                    {static_cast<float>(dn[0]), static_cast<float>(dn[1]), static_cast<float>(dn[2])});
           }
           for (int k = 0; k < 3; ++k) {
             const float f = static_cast<float>(p[k]);
@@ -151,6 +212,8 @@ tinygltf::Mesh write_mesh(const SkinnedMesh& mesh, BufferWriter& buf, const std:
           if (has_error) err.push_back(mesh.property(h_error, vh));
           nrm.insert(nrm.end(), c.n.begin(), c.n.end());
           uv.insert(uv.end(), c.uv.begin(), c.uv.end());
+          for (size_t i = 0, at = 0; i < sets.size(); at += sets[i].components, ++i)
+            set_values[i].insert(set_values[i].end(), c.sets.begin() + at, c.sets.begin() + at + sets[i].components);
           float_weights(mesh.property(h_inf, vh), slots, joints, weights);
         }
         indices.push_back(it->second);
@@ -168,6 +231,12 @@ tinygltf::Mesh write_mesh(const SkinnedMesh& mesh, BufferWriter& buf, const std:
     if (has_uv)
       prim.attributes["TEXCOORD_0"] =
           buf.add(uv, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, nv, TINYGLTF_TARGET_ARRAY_BUFFER);
+    for (size_t i = 0; i < sets.size(); ++i)
+      prim.attributes[sets[i].attribute] = buf.add(set_values[i], TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                                   sets[i].components == 2   ? TINYGLTF_TYPE_VEC2
+                                                   : sets[i].components == 3 ? TINYGLTF_TYPE_VEC3
+                                                                             : TINYGLTF_TYPE_VEC4,
+                                                   nv, TINYGLTF_TARGET_ARRAY_BUFFER);
     if (has_error)
       prim.attributes["_ERROR"] =
           buf.add(err, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_SCALAR, nv, TINYGLTF_TARGET_ARRAY_BUFFER);
@@ -193,6 +262,9 @@ tinygltf::Mesh write_mesh(const SkinnedMesh& mesh, BufferWriter& buf, const std:
       }
       prim.targets.push_back({{"POSITION", buf.add(deltas[t], TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, nv,
                                                    TINYGLTF_TARGET_ARRAY_BUFFER, dmn, dmx)}});
+      if (!normal_deltas[t].empty())
+        prim.targets.back()["NORMAL"] = buf.add(normal_deltas[t], TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, nv,
+                                                TINYGLTF_TARGET_ARRAY_BUFFER);
     }
     prim.indices = buf.add(indices, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, indices.size(),
                            TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);

@@ -1,5 +1,6 @@
 #include "OpenMeshSkinned/IO/ImportArchive.hh"
 
+#include "OpenMeshSkinned/Mesh/CornerAttributes.hh"
 #include "OpenMeshSkinned/Skin/Morph.hh"
 #include "OpenMeshSkinned/Skin/SkinProperties.hh"
 
@@ -9,6 +10,7 @@
 #include <cereal/types/string.hpp>
 #include <cereal/types/vector.hpp>
 
+#include <algorithm>
 #include <istream>
 #include <ostream>
 #include <streambuf>
@@ -54,7 +56,7 @@ void serialize(Ar& ar, Pose& p) {
 }
 template <class Ar>
 void serialize(Ar& ar, MorphTarget& t) {
-  ar(t.name);
+  ar(t.name, t.normals);
 }
 template <class Ar>
 void serialize(Ar& ar, Image& i) {
@@ -79,16 +81,18 @@ void serialize(Ar& ar, ImportReport& r) {
 namespace {
 
 constexpr uint32_t kMagic = 0x4b534d4f;  // "OMSK"
-constexpr uint32_t kVersion = 1;
+constexpr uint32_t kVersion = 2;
 
 // The mesh as flat arrays: the face list rebuilds the same connectivity (the importer already split
 // every complex edge and vertex), and corners are stored in each face's vertex order.
 struct Flat {
   std::vector<double> points;
   std::vector<int32_t> face_vertices, face_material;
-  std::vector<double> corner_normals;  // 3 x 3 per face
-  std::vector<float> corner_uvs;       // 3 x 2 per face
-  std::vector<int32_t> inf_joints;     // Influences::kCapacity per vertex, -1 = none
+  std::vector<double> corner_normals;           // 3 x 3 per face
+  std::vector<float> corner_uvs;                // 3 x 2 per face
+  std::vector<int32_t> set_kinds, set_indices;  // CornerAttributes.hh's sets: CornerKind, set number
+  std::vector<std::vector<float>> set_values;   // per set: 3 x 4 per face
+  std::vector<int32_t> inf_joints;              // Influences::kCapacity per vertex, -1 = none
   std::vector<double> inf_weights;
   std::vector<MorphTarget> morph_targets;
   std::vector<MorphDeltas> morph_deltas;
@@ -99,8 +103,8 @@ struct Flat {
 
   template <class Ar>
   void serialize(Ar& ar) {
-    ar(points, face_vertices, face_material, corner_normals, corner_uvs, inf_joints, inf_weights, morph_targets,
-       morph_deltas, skeleton, poses, clips, materials);
+    ar(points, face_vertices, face_material, corner_normals, corner_uvs, set_kinds, set_indices, set_values, inf_joints,
+       inf_weights, morph_targets, morph_deltas, skeleton, poses, clips, materials);
   }
 };
 
@@ -156,6 +160,12 @@ void append_import(const SkinnedMesh& mesh, const ImportReport& report, std::str
     }
     if (morphs) f.morph_deltas.push_back(mesh.property(h_delta, vh));
   }
+  const std::vector<CornerChannel> sets = corner_channels(mesh);
+  for (const CornerChannel& c : sets) {
+    f.set_kinds.push_back(static_cast<int32_t>(c.kind));
+    f.set_indices.push_back(c.set);
+  }
+  f.set_values.resize(sets.size());
   for (auto fh : mesh.faces()) {
     f.face_material.push_back(mesh.property(h_fmat, fh));
     for (auto heh : mesh.fh_range(fh)) {
@@ -164,6 +174,10 @@ void append_import(const SkinnedMesh& mesh, const ImportReport& report, std::str
       const auto& t = mesh.texcoord2D(heh);
       f.corner_normals.insert(f.corner_normals.end(), {n[0], n[1], n[2]});
       f.corner_uvs.insert(f.corner_uvs.end(), {t[0], t[1]});
+      for (size_t i = 0; i < sets.size(); ++i) {
+        const OpenMesh::Vec4f& x = mesh.property(sets[i].handle, heh);
+        f.set_values[i].insert(f.set_values[i].end(), x.data(), x.data() + 4);
+      }
     }
   }
   f.morph_targets = morph_targets(mesh);
@@ -202,7 +216,9 @@ void load_import(const char* data, size_t size, SkinnedMesh& mesh, ImportReport&
   const size_t kc = Influences::kCapacity;
   if (f.points.size() != 3 * nv || f.face_vertices.size() != 3 * nf || f.corner_normals.size() != 9 * nf ||
       f.corner_uvs.size() != 6 * nf || f.inf_joints.size() != kc * nv || f.inf_weights.size() != kc * nv ||
-      (!f.morph_deltas.empty() && f.morph_deltas.size() != nv))
+      (!f.morph_deltas.empty() && f.morph_deltas.size() != nv) || f.set_indices.size() != f.set_kinds.size() ||
+      f.set_values.size() != f.set_kinds.size() ||
+      std::any_of(f.set_values.begin(), f.set_values.end(), [nf](const auto& v) { return v.size() != 12 * nf; }))
     throw IOError("import archive: inconsistent array sizes");
 
   mesh = SkinnedMesh();  // a fresh mesh: clear() would keep the properties (skeleton, clips) of an earlier use
@@ -215,6 +231,14 @@ void load_import(const char* data, size_t size, SkinnedMesh& mesh, ImportReport&
   mesh.reserve(nv + nv / 32 + 16, nf + nf / 2 + nf / 32 + 16, nf);
   OpenMesh::VPropHandleT<MorphDeltas> h_delta;
   if (!f.morph_targets.empty()) h_delta = add_morph_targets(mesh);
+  std::vector<CornerChannel> sets;
+  for (size_t i = 0; i < f.set_kinds.size(); ++i) {
+    const int kind = f.set_kinds[i], set = f.set_indices[i];
+    if ((kind != int(CornerKind::TexCoord) && kind != int(CornerKind::Color)) || set < 0 ||
+        set >= (kind == int(CornerKind::Color) ? kMaxColorSets : kMaxTexCoordSets))
+      throw IOError("import archive: unknown corner attribute set");
+    sets.push_back(add_corner_channel(mesh, CornerKind(kind), set));
+  }
   for (size_t v = 0; v < nv; ++v) {
     const auto vh = mesh.add_vertex(SkinnedMesh::Point(f.points[3 * v], f.points[3 * v + 1], f.points[3 * v + 2]));
     Influences inf;
@@ -239,6 +263,8 @@ void load_import(const char* data, size_t size, SkinnedMesh& mesh, ImportReport&
         const double* n = &f.corner_normals[9 * i + 3 * c];
         mesh.set_normal(heh, SkinnedMesh::Normal(n[0], n[1], n[2]));
         mesh.set_texcoord2D(heh, SkinnedMesh::TexCoord2D(f.corner_uvs[6 * i + 2 * c], f.corner_uvs[6 * i + 2 * c + 1]));
+        for (size_t s = 0; s < sets.size(); ++s)
+          mesh.property(sets[s].handle, heh) = OpenMesh::Vec4f(&f.set_values[s][12 * i + 4 * c]);
       }
   }
   mesh.update_face_normals();

@@ -151,6 +151,9 @@ void GeometryBuilder::add(const aiScene* scene, const SceneNodes& sn, JointMap& 
   const int node_joint = joints.joint_for(in.node, sn.global[in.node].inverse());
   const std::vector<Influences> inf = read_weights(am, joints, B.inverse(), node_joint);
 
+  for (unsigned t = 0; t < am->mNumAnimMeshes && n_targets_ > 0; ++t)
+    if (am->mAnimMeshes[t]->mNormals) morph_targets(mesh_)[target_base + t].normals = true;
+
   std::vector<SkinnedMesh::VertexHandle> vmap(am->mNumVertices);
   for (unsigned v = 0; v < am->mNumVertices; ++v) {
     const aiVector3D& p = am->mVertices[v];
@@ -182,12 +185,84 @@ void GeometryBuilder::add(const aiScene* scene, const SceneNodes& sn, JointMap& 
     vmap[v] = it->second;
   }
   add_faces(am, vmap, normal_matrix);
+  note_dropped(am);
+}
+
+void GeometryBuilder::warn(int& slot, const std::string& text) {
+  if (slot < 0) {
+    slot = static_cast<int>(rep_.warnings.size());
+    rep_.warnings.push_back(text);
+  } else {
+    rep_.warnings[slot] = text;
+  }
+}
+
+// What the mesh has that the output does not carry.
+void GeometryBuilder::note_dropped(const aiMesh* am) {
+  bool target_tangents = false, target_attributes = false;
+  for (unsigned t = 0; t < am->mNumAnimMeshes; ++t) {
+    const aiAnimMesh* an = am->mAnimMeshes[t];
+    target_tangents |= an->mTangents != nullptr;
+    // Some readers copy the base mesh's colours and UVs into every target: only a difference is an offset.
+    for (unsigned n = 0; n < AI_MAX_NUMBER_OF_COLOR_SETS; ++n)
+      if (an->mColors[n] && am->mColors[n])
+        for (unsigned v = 0; v < am->mNumVertices && !target_attributes; ++v)
+          target_attributes = !(an->mColors[n][v] == am->mColors[n][v]);
+    for (unsigned n = 0; n < AI_MAX_NUMBER_OF_TEXTURECOORDS; ++n)
+      if (an->mTextureCoords[n] && am->mTextureCoords[n])
+        for (unsigned v = 0; v < am->mNumVertices && !target_attributes; ++v)
+          target_attributes = !(an->mTextureCoords[n][v] == am->mTextureCoords[n][v]);
+  }
+  if (am->HasTangentsAndBitangents() || target_tangents)
+    warn(tangent_warning_,
+         "tangents (TANGENT, and morph targets' tangent offsets) are not written: glTF viewers compute MikkTSpace "
+         "tangents when TANGENT is absent");
+  if (target_attributes)
+    warn(target_warning_, "morph targets' colour and UV offsets are not kept (position and normal offsets are)");
+  // Readers report a third component for some 2D sets (Collada): only a non-zero w is lost.
+  bool uvw = false;
+  for (unsigned n = 0; n < AI_MAX_NUMBER_OF_TEXTURECOORDS; ++n)
+    if (am->HasTextureCoords(n) && am->mNumUVComponents[n] > 2)
+      for (unsigned v = 0; v < am->mNumVertices && !uvw; ++v) uvw = am->mTextureCoords[n][v].z != 0.0f;
+  if (uvw) warn(uvw_warning_, "3D texture coordinates: only u and v are kept (glTF has 2D UV sets)");
+  if (clamped_colours_ > 0)
+    warn(clamp_warning_,
+         std::to_string(clamped_colours_) + " vertex colour components outside [0, 1] (or not finite) clamped");
+}
+
+OpenMesh::Vec4f GeometryBuilder::corner_value(const aiMesh* am, const CornerChannel& ch, unsigned src) {
+  OpenMesh::Vec4f x = ch.fallback();
+  if (ch.kind == CornerKind::TexCoord) {
+    if (!am->HasTextureCoords(ch.set)) return x;
+    const aiVector3D& t = am->mTextureCoords[ch.set][src];
+    if (std::isfinite(t.x) && std::isfinite(t.y)) x = OpenMesh::Vec4f(t.x, t.y, 0, 0);
+    return x;
+  }
+  if (!am->HasVertexColors(ch.set)) return x;
+  const aiColor4D& c = am->mColors[ch.set][src];
+  const float in[4] = {c.r, c.g, c.b, c.a};
+  for (int k = 0; k < 4; ++k) {
+    // glTF colours are in [0, 1]; a non-finite component keeps white's.
+    if (!std::isfinite(in[k])) {
+      ++clamped_colours_;
+      continue;
+    }
+    x[k] = std::clamp(in[k], 0.0f, 1.0f);
+    clamped_colours_ += x[k] != in[k];
+  }
+  return x;
 }
 
 void GeometryBuilder::add_faces(const aiMesh* am, const std::vector<SkinnedMesh::VertexHandle>& vmap,
                                 const Eigen::Matrix3d& normal_matrix) {
   const bool has_uv = am->HasTextureCoords(0);
   const bool has_n = am->HasNormals();
+  // Every set this mesh has is added to the whole mesh; corners of meshes without it get its fallback.
+  for (unsigned n = 1; n < AI_MAX_NUMBER_OF_TEXTURECOORDS && int(n) < kMaxTexCoordSets; ++n)
+    if (am->HasTextureCoords(n)) add_corner_channel(mesh_, CornerKind::TexCoord, int(n));
+  for (unsigned n = 0; n < AI_MAX_NUMBER_OF_COLOR_SETS && int(n) < kMaxColorSets; ++n)
+    if (am->HasVertexColors(n)) add_corner_channel(mesh_, CornerKind::Color, int(n));
+  const std::vector<CornerChannel> channels = corner_channels(mesh_);
   std::vector<SkinnedMesh::VertexHandle> corner_vh;
   for (unsigned f = 0; f < am->mNumFaces; ++f) {
     const aiFace& af = am->mFaces[f];
@@ -231,6 +306,7 @@ void GeometryBuilder::add_faces(const aiMesh* am, const std::vector<SkinnedMesh:
           if (std::isfinite(t.x) && std::isfinite(t.y)) uv = SkinnedMesh::TexCoord2D(t.x, t.y);
         }
         mesh_.set_texcoord2D(heh, uv);
+        for (const CornerChannel& ch : channels) mesh_.property(ch.handle, heh) = corner_value(am, ch, src);
       }
     }
     ++rep_.faces;

@@ -1,12 +1,14 @@
 #pragma once
 /** \file ImportGeometry.hh
  *  The import step that turns assimp meshes into one OpenMesh mesh: each instance in its bind space,
- *  skin weights read and checked, split copies welded, faces with per-corner normals and UVs.
+ *  skin weights read and checked, split copies welded, faces with per-corner normals, UV sets and colours
+ *  (CornerAttributes.hh).
  *  Internal to the importer (Import.cc).
  */
 
 #include "OpenMeshSkinned/IO/Import.hh"
 #include "OpenMeshSkinned/IO/ImportScene.hh"
+#include "OpenMeshSkinned/Mesh/CornerAttributes.hh"
 #include "OpenMeshSkinned/Skin/Morph.hh"
 #include "OpenMeshSkinned/Skin/SkinProperties.hh"
 
@@ -30,6 +32,9 @@ private:
                                        int node_joint);
   void add_faces(const aiMesh* am, const std::vector<SkinnedMesh::VertexHandle>& vmap,
                  const Eigen::Matrix3d& normal_matrix);
+  OpenMesh::Vec4f corner_value(const aiMesh* am, const CornerChannel& ch, unsigned src);
+  void note_dropped(const aiMesh* am);
+  void warn(int& slot, const std::string& text);
 
   struct Weld;
   SkinnedMesh& mesh_;
@@ -41,6 +46,9 @@ private:
   OpenMesh::FPropHandleT<int> h_fmat_;
   OpenMesh::VPropHandleT<MorphDeltas> h_delta_;
   std::unique_ptr<Weld> weld_;
+  // What is not kept, one warning line each (rewritten as later meshes add to it): its index in rep_.warnings.
+  int tangent_warning_ = -1, target_warning_ = -1, clamp_warning_ = -1, uvw_warning_ = -1;
+  size_t clamped_colours_ = 0;
 };
 
 }  // namespace OpenMeshSkinned::detail

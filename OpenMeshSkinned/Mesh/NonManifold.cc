@@ -1,5 +1,6 @@
 #include "OpenMeshSkinned/Mesh/NonManifold.hh"
 
+#include "OpenMeshSkinned/Mesh/CornerAttributes.hh"
 #include "OpenMeshSkinned/Skin/Morph.hh"
 #include "OpenMeshSkinned/Skin/SkinProperties.hh"
 
@@ -32,6 +33,7 @@ size_t split_nonmanifold_vertices(SkinnedMesh& mesh, OpenMesh::FPropHandleT<int>
     SkinnedMesh::VertexHandle v;
     SkinnedMesh::Normal n;
     SkinnedMesh::TexCoord2D t;
+    SkinnedMesh::HalfedgeHandle from;  // the corner in the deleted face: its storage outlives the deletion
   };
   for (size_t vi = 0; vi < faces_of.size(); ++vi) {
     const SkinnedMesh::VertexHandle vh(static_cast<int>(vi));
@@ -59,7 +61,8 @@ size_t split_nonmanifold_vertices(SkinnedMesh& mesh, OpenMesh::FPropHandleT<int>
         std::vector<Corner> corners;
         for (auto heh : mesh.fh_range(fh)) {
           const SkinnedMesh::VertexHandle to = mesh.to_vertex_handle(heh);
-          corners.push_back({to == vh ? SkinnedMesh::VertexHandle(copy) : to, mesh.normal(heh), mesh.texcoord2D(heh)});
+          corners.push_back(
+              {to == vh ? SkinnedMesh::VertexHandle(copy) : to, mesh.normal(heh), mesh.texcoord2D(heh), heh});
         }
         const int mat = mesh.property(h_fmat, fh);
         mesh.delete_face(fh, false);
@@ -78,6 +81,7 @@ size_t split_nonmanifold_vertices(SkinnedMesh& mesh, OpenMesh::FPropHandleT<int>
             if (c.v == mesh.to_vertex_handle(heh)) {
               mesh.set_normal(heh, c.n);
               mesh.set_texcoord2D(heh, c.t);
+              copy_corner_channels(mesh, c.from, heh);
             }
         for (const Corner& c : corners) faces_of[c.v.idx()].push_back(nf);
       }

@@ -9,6 +9,13 @@
  *
  *  As in glTF, a pose's morph weights m_i add sum_i m_i * delta_i to the rest position before skinning.
  *  Meshes without morph targets carry neither property.
+ *
+ *  Normal offsets are not stored: a target whose input had them (MorphTarget::normals) gets them on
+ *  export, recomputed per corner as the normal of the morphed geometry minus the normal of the rest
+ *  geometry, with the rest normals' smoothing groups. The exporter recomputes the rest normals from the
+ *  LOD's geometry too, so only offsets made the same way make rest + offset the normal of the LOD's morphed
+ *  surface; the input's offsets, carried over, would belong to the input's normals and shade a decimated
+ *  (or re-smoothed) surface with the shape change of another one.
  */
 
 #include "OpenMeshSkinned/Skin/Skeleton.hh"

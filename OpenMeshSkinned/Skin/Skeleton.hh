@@ -85,6 +85,7 @@ struct Pose {
 /// A morph target (blend shape): its per-vertex offsets live in "v:morph_deltas".
 struct MorphTarget {
   std::string name;
+  bool normals = false;  ///< the input gave it normal offsets: the export writes them (Morph.hh says how)
 };
 
 /// Local transforms of every joint of \p skel for \p clip at \p time (seconds, clamped into the clip):

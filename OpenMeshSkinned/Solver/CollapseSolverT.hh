@@ -6,17 +6,18 @@
  *  positions and skins) and hands it to the mesh-free kernel (SkinnedQuadricSolve.hh). The answer depends
  *  only on the two endpoints, so it is cached per edge and reused until either endpoint changes (vertex
  *  version stamps): DecimaterT asks for every edge around a collapse again, and most of those did not
- *  change. At a collapse it applies the answer: position, skin, per-pose quadrics, UVs, morph offsets.
+ *  change. At a collapse it applies the answer: position, skin, per-pose quadrics, corner UVs and colours, morph
+ * offsets.
  *
  *  The solver lives in the named mesh property "m:omsk_collapse_solver" (shared_solver()), so the modules
  *  find it and work alone or in any combination; its settings are gathered from the modules attached to
  *  it. How it relies on DecimaterT's call order is written down in SolverModuleT.hh.
  */
 
+#include "OpenMeshSkinned/Decimater/CornerTransferT.hh"
 #include "OpenMeshSkinned/Decimater/DriverHints.hh"
 #include "OpenMeshSkinned/Decimater/FoldOver.hh"
 #include "OpenMeshSkinned/Decimater/MorphTransferT.hh"
-#include "OpenMeshSkinned/Decimater/UvTransferT.hh"
 #include "OpenMeshSkinned/Solver/EdgeCache.hh"
 #include "OpenMeshSkinned/Solver/PoseCacheT.hh"
 #include "OpenMeshSkinned/Solver/SolveAhead.hh"
@@ -92,7 +93,7 @@ public:
   using VertexHandle = typename Mesh::VertexHandle;
   using CollapseInfo = OpenMesh::Decimater::CollapseInfoT<Mesh>;
 
-  explicit CollapseSolverT(Mesh& mesh) : mesh_(mesh), poses_(mesh), uv_(mesh), morph_(mesh), stale_(mesh) {}
+  explicit CollapseSolverT(Mesh& mesh) : mesh_(mesh), poses_(mesh), corners_(mesh), morph_(mesh), stale_(mesh) {}
 
   // ---- settings -----------------------------------------------------------------------------------------
 
@@ -155,7 +156,7 @@ public:
     h_inf_ = poses_.influences();
     cache_.reset(mesh_.n_edges(), mesh_.n_vertices(), answer_capacity());
     resize_cache_ = false;
-    uv_.prepare();
+    corners_.prepare();
     stale_.prepare();
     prepared_ = true;
     solved_ahead_ = false;
@@ -372,7 +373,7 @@ public:
     pending_ = true;
     stale_.begin_collapse(ci);
     pending_result_.valid = false;
-    uv_.record(ci.v0, ci.v1);
+    corners_.record(ci.v0, ci.v1);
     morph_.record(ci.v0, ci.v1);
     if (!settings_.placement) return;
     if (chosen_for(ci)) {
@@ -403,8 +404,8 @@ public:
     } else if (mesh_.property(h_inf_, v1).size() > settings_.max_influences) {
       reduce_vertex(v1);
     }
-    // Moved or not, v1's corners that came from v0 carry v0's UVs: re-interpolate all of them.
-    uv_.apply(v1);
+    // Moved or not, v1's corners that came from v0 carry v0's UVs and colours: re-interpolate all of them.
+    corners_.apply(v1);
     morph_.apply(v1);
     cache_.touch(v1.idx());
     cache_.touch(v0.idx());
@@ -537,7 +538,7 @@ private:
   std::vector<SolverClientT<Mesh>*> clients_;
   OpenMesh::VPropHandleT<Influences> h_inf_;
   PoseCacheT<Mesh> poses_;
-  UvTransferT<Mesh> uv_;
+  CornerTransferT<Mesh> corners_;
   MorphTransferT<Mesh> morph_;
   StaleVerdictsT<Mesh> stale_;
   EdgeCache cache_;
