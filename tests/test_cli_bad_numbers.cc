@@ -38,9 +38,9 @@ fs::path wuson_with(const std::string& test, const std::string& from, const std:
 
 // The CLI under `timeout`, so that a hang fails the test (exit 124) instead of stalling the suite.
 omsk_test::CommandResult run(const fs::path& d, const std::string& input, const std::string& extra = "") {
-  return omsk_test::run_command("/usr/bin/timeout", "60 '" + std::string(OMSK_CLI_EXE) + "' " + input +
-                                                        " -o out.glb --ratio 0.5 --poses 2 --quiet " + extra,
-                                d);
+  return omsk_test::run_command(
+      "/usr/bin/timeout",
+      "60 '" + std::string(OMSK_CLI_EXE) + "' " + input + " -o out.glb --ratio 0.5 --poses 2 --quiet " + extra, d);
 }
 
 std::vector<std::string> lines(const std::string& s) {
@@ -60,8 +60,9 @@ TEST(CliBadNumbers, ANaNKeyIsOneLineNamingClipJointAndKey) {
   const fs::path d = wuson_with("nan_key", kFirstPosKey, "0;3;NaN,0.000000,-0.000000;;;");
   const auto r = run(d, "in.x");
   EXPECT_EQ(r.code, 1) << r.out;
-  EXPECT_EQ(r.out, "skinned-decimate: in.x: clip \"Wuson_Run\": joint \"Wuson\": translation key 0 has the non-finite "
-                   "value nan\n");
+  EXPECT_EQ(r.out,
+            "skinned-decimate: in.x: clip \"Wuson_Run\": joint \"Wuson\": translation key 0 has the non-finite "
+            "value nan\n");
   EXPECT_FALSE(fs::exists(d / "out.glb"));
 }
 
@@ -87,8 +88,9 @@ TEST(CliBadNumbers, AJointOutsideTheSkinIsOneLineNamingIt) {
   omsk_spec::save_glb(m, (d / "in.glb").string());
   const auto r = run(d, "in.glb");
   EXPECT_EQ(r.code, 1) << r.out;
-  EXPECT_EQ(r.out, "skinned-decimate: in.glb: vertex 4 of mesh 0 (\"\") names joint 7 in JOINTS_0, but skin 0 (\"\") "
-                   "has 2 joints\n");
+  EXPECT_EQ(r.out,
+            "skinned-decimate: in.glb: vertex 4 of mesh 0 (\"\") names joint 7 in JOINTS_0, but skin 0 (\"\") "
+            "has 2 joints\n");
 }
 
 TEST(CliBadNumbers, AnAccessorOfTwoToTheThirtyFirstElementsIsOneLineNamingIt) {
@@ -98,8 +100,9 @@ TEST(CliBadNumbers, AnAccessorOfTwoToTheThirtyFirstElementsIsOneLineNamingIt) {
   omsk_spec::save_glb(m, (d / "in.glb").string());
   const auto r = run(d, "in.glb");
   EXPECT_EQ(r.code, 1) << r.out;
-  EXPECT_EQ(r.out, "skinned-decimate: in.glb: accessor 3 (WEIGHTS_0 of mesh 0 (\"\")) claims 2147483648 elements of "
-                   "16 bytes from byte 160, more than its buffer view's 320 bytes hold\n");
+  EXPECT_EQ(r.out,
+            "skinned-decimate: in.glb: accessor 3 (WEIGHTS_0 of mesh 0 (\"\")) claims 2147483648 elements of "
+            "16 bytes from byte 160, more than its buffer view's 320 bytes hold\n");
 }
 
 TEST(CliBadNumbers, BytesThatAreNoTextNeverReachTheTerminal) {

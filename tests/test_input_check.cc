@@ -68,14 +68,19 @@ TEST(InputCheck, NonFiniteKeysAreRefusedNamingClipJointKeyAndValue) {
   c.channels[0].rotation_times[2] = std::numeric_limits<double>::infinity();
   EXPECT_EQ(refusal(c), "in.x: clip \"walk\": joint \"knee\": rotation key 2 has the time inf");
   c = walk();
+  c.channels[0].rotation_times[2] = 1e39;  // inf once written as float seconds
+  EXPECT_EQ(refusal(c), "in.x: clip \"walk\": joint \"knee\": rotation key 2 has the time 1e+39");
+  c = walk();
   c.channels[0].translations[0].x() = 1e39;  // written as float: it would become inf in the file
-  EXPECT_EQ(refusal(c), "in.x: clip \"walk\": joint \"knee\": translation key 0 has the value 1e+39, beyond float range");
+  EXPECT_EQ(refusal(c),
+            "in.x: clip \"walk\": joint \"knee\": translation key 0 has the value 1e+39, beyond float range");
 }
 
 TEST(InputCheck, AZeroQuaternionIsRefusedAndOthersRenormalised) {
   Clip c = walk();
   c.channels[0].rotations[1] = Eigen::Quaterniond(0, 0, 0, 0);
-  EXPECT_EQ(refusal(c), "in.x: clip \"walk\": joint \"knee\": rotation key 1 has a rotation of length 0, no quaternion");
+  EXPECT_EQ(refusal(c),
+            "in.x: clip \"walk\": joint \"knee\": rotation key 1 has a rotation of length 0, no quaternion");
   c = walk();
   c.channels[0].rotations[1] = Eigen::Quaterniond(2, 0, 0, 0);
   std::vector<std::string> warnings;
@@ -99,8 +104,9 @@ TEST(InputCheck, KeysEqualInFloatSecondsAreMergedKeepingTheLater) {
     EXPECT_LT(float(ch.translation_times[k - 1]), float(ch.translation_times[k]));
   EXPECT_EQ(ch.translations[1], Eigen::Vector3d(0, 7, 0));
   ASSERT_EQ(warnings.size(), 1u);
-  EXPECT_EQ(warnings[0], "clip \"walk\": 1 keys fell on the time of the key before them once written as float "
-                         "seconds: merged (the later kept)");
+  EXPECT_EQ(warnings[0],
+            "clip \"walk\": 1 keys fell on the time of the key before them once written as float "
+            "seconds: merged (the later kept)");
 }
 
 TEST(InputCheck, KeysOutOfOrderAreSortedWithTheirValues) {

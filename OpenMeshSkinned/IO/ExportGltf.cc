@@ -15,6 +15,7 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <new>
 
 namespace OpenMeshSkinned {
 namespace {
@@ -83,7 +84,13 @@ void export_gltf(const SkinnedMesh& mesh, const std::string& path) {
   for (int i = 0; i < n_joints; ++i) skin.joints.push_back(i);
   model.skins.push_back(skin);
 
-  detail::write_materials(mats, buf, model);
+  try {
+    detail::write_materials(mats, buf, model);
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {  // a carried field of the wrong type (e.g. a string alphaCutoff)
+    throw fail(std::string("cannot be written: a material field has the wrong type (") + e.what() + ")");
+  }
 
   model.meshes.push_back(detail::write_mesh(mesh, buf, path));
 

@@ -1,6 +1,7 @@
 #include "OpenMeshSkinned/IO/ExportMaterials.hh"
 
 #include "OpenMeshSkinned/IO/GltfMaterials.hh"
+#include "OpenMeshSkinned/IO/PrintableText.hh"
 
 #include <nlohmann/json.hpp>
 
@@ -90,7 +91,7 @@ public:
       if (model_.images[i].mimeType == img.mime_type && *image_bytes_[i] == img.data) return by_pointer_[&img] = i;
     // Inside the file (a buffer view), so that the LOD carries its textures wherever it goes.
     tinygltf::Image gi;
-    gi.name = img.name;
+    gi.name = printable_text(img.name);  // a file name from the input: glTF's JSON must be UTF-8
     gi.mimeType = img.mime_type;
     gi.bufferView = buf_.add_view(img.data);
     model_.images.push_back(gi);
@@ -105,7 +106,7 @@ public:
     if (auto it = samplers_.find(text); it != samplers_.end()) return it->second;
     const json j = json::parse(text);
     tinygltf::Sampler s;
-    s.name = j.value("name", "");
+    s.name = printable_text(j.value("name", ""));
     s.magFilter = j.value("magFilter", -1);
     s.minFilter = j.value("minFilter", -1);
     s.wrapS = j.value("wrapS", TINYGLTF_TEXTURE_WRAP_REPEAT);
@@ -129,7 +130,7 @@ public:
     const std::string key = j.dump() + "#" + std::to_string(s);
     if (auto it = textures_.find(key); it != textures_.end()) return it->second;
     tinygltf::Texture gt;
-    gt.name = j.value("name", "");
+    gt.name = printable_text(j.value("name", ""));
     gt.source = j.value("source", -1);
     gt.sampler = s;
     extensions_and_extras(j, gt);

@@ -139,9 +139,12 @@ tinygltf::Mesh write_mesh(const SkinnedMesh& mesh, BufferWriter& buf, const std:
   const std::vector<CornerChannel> channels = corner_channels(mesh);
   const bool has_uv = [&] {
     if (!mesh.has_halfedge_texcoords2D()) return false;
-    // TEXCOORD_1 needs a TEXCOORD_0, zero or not.
+    // TEXCOORD_1 needs a TEXCOORD_0, zero or not, and so does a textured material (a file whose textures
+    // have no UVs to read would otherwise become one the validator refuses).
     for (const CornerChannel& c : channels)
       if (c.kind == CornerKind::TexCoord) return true;
+    for (const Material& m : materials(mesh))
+      if (!m.textures.empty()) return true;
     for (auto heh : mesh.halfedges()) {
       if (mesh.is_boundary(heh)) continue;  // no face, no corner: its UV is never set
       const auto t = mesh.texcoord2D(heh);

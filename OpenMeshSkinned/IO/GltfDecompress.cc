@@ -147,6 +147,14 @@ size_t index_in(const json& object, const char* key, size_t size, const std::str
 
 // --- EXT_meshopt_compression / KHR_meshopt_compression ------------------------------------------------
 
+// Whether \p count elements of \p elem bytes, \p step apart from byte \p start, lie within \p size bytes;
+// in elements, so that no product of numbers from the file can overflow.
+bool fits(size_t start, size_t count, size_t step, size_t elem, size_t size) {
+  if (count == 0) return start <= size;
+  if (start > size || elem > size - start) return false;
+  return step == 0 || (count - 1) <= (size - start - elem) / step;
+}
+
 // Decodes one compressed buffer view in place (it then points at the decoded bytes).
 void decode_meshopt_view(json& doc, size_t v, const char* ext, GltfBytes& bytes, const std::string& shown_as) {
   const json e = doc["bufferViews"][v]["extensions"][ext];  // a copy: adding views moves the array
@@ -159,6 +167,8 @@ void decode_meshopt_view(json& doc, size_t v, const char* ext, GltfBytes& bytes,
   const std::string src = bytes.range(buffer, offset, length, what);
 
   if (stride == 0 || count == 0 || stride > 256) throw IOError(what + " has a byteStride of " + std::to_string(stride));
+  if (count > std::numeric_limits<size_t>::max() / stride)
+    throw IOError(what + " claims " + std::to_string(count) + " elements, more than any buffer holds");
   // The extension makes the view's byteLength the decoded size: anything else is a broken file.
   if (doc["bufferViews"][v].value("byteLength", size_t(0)) != count * stride)
     throw IOError(what + " decodes to " + std::to_string(count) + " x " + std::to_string(stride) +
@@ -405,14 +415,15 @@ std::vector<double> accessor_values(json& doc, size_t a, GltfBytes& bytes, const
   const size_t cs = component_size(type);
   if (n == 0 || cs == 0) throw IOError(what + " has an unknown type");
   const bool normalized = !as_stored && acc.value("normalized", false);
+  if (count > (size_t(1) << 32))
+    throw IOError(what + " claims " + std::to_string(count) + " elements, more than any buffer holds");
   std::vector<double> out(count * n, 0.0);
   if (acc.contains("bufferView")) {
     const size_t view = index_in(acc, "bufferView", doc["bufferViews"].size(), what);
     const std::string data = bytes.view_bytes(view);
     const size_t stride = doc["bufferViews"][view].value("byteStride", size_t(0));
     const size_t step = stride ? stride : n * cs, start = acc.value("byteOffset", size_t(0));
-    if (count > 0 && start + (count - 1) * step + n * cs > data.size())
-      throw IOError(what + " runs past its buffer view");
+    if (!fits(start, count, step, n * cs, data.size())) throw IOError(what + " runs past its buffer view");
     for (size_t i = 0; i < count; ++i)
       for (size_t c = 0; c < n; ++c)
         out[i * n + c] = read_component(data.data() + start + i * step + c * cs, type, normalized);
@@ -427,7 +438,7 @@ std::vector<double> accessor_values(json& doc, size_t a, GltfBytes& bytes, const
     const std::string idata = bytes.view_bytes(index_in(si, "bufferView", doc["bufferViews"].size(), what));
     const std::string vdata = bytes.view_bytes(index_in(sv, "bufferView", doc["bufferViews"].size(), what));
     const size_t ioff = si.value("byteOffset", size_t(0)), voff = sv.value("byteOffset", size_t(0));
-    if (ics == 0 || ioff + k * ics > idata.size() || voff + k * n * cs > vdata.size())
+    if (ics == 0 || !fits(ioff, k, ics, ics, idata.size()) || !fits(voff, k, n * cs, n * cs, vdata.size()))
       throw IOError(what + ": its sparse part runs past its buffer views");
     for (size_t j = 0; j < k; ++j) {
       const auto i = size_t(read_component(idata.data() + ioff + j * ics, itype, false));

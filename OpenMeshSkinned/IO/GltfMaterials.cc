@@ -155,7 +155,7 @@ private:
       }
       if (!buffer(view->value("buffer", -1), data, problem)) return false;
       const size_t off = view->value("byteOffset", size_t(0)), len = view->value("byteLength", size_t(0));
-      if (off + len > data->size() || len == 0) {
+      if (off > data->size() || len > data->size() - off || len == 0) {
         problem = "its image's buffer view lies outside its buffer";
         return false;
       }
@@ -380,9 +380,14 @@ bool read_gltf_materials(const std::string& read_path, const std::string& source
       });
       if (m.contains("pbrMetallicRoughness") && m["pbrMetallicRoughness"].is_object()) {
         const json& pbr = m["pbrMetallicRoughness"];
-        if (pbr.contains("baseColorTexture")) {
-          const Texture& bt = mat.textures[pbr["baseColorTexture"]["index"].get<size_t>()];
-          mat.base_color_texture = bt.images.empty() ? "texture" : bt.images.front()->name;
+        // Only a reference each_texture_info() renumbered points into mat.textures (a malformed one, an
+        // index that is no integer, is left as it was and names no texture here).
+        if (pbr.contains("baseColorTexture") && is_texture_info("baseColorTexture", pbr["baseColorTexture"])) {
+          const auto t = pbr["baseColorTexture"]["index"].get<long long>();
+          if (t >= 0 && size_t(t) < mat.textures.size()) {
+            const Texture& bt = mat.textures[size_t(t)];
+            mat.base_color_texture = bt.images.empty() ? "texture" : bt.images.front()->name;
+          }
         }
         if (pbr.empty()) m.erase("pbrMetallicRoughness");
       }

@@ -108,12 +108,19 @@ RepairedGltf::RepairedGltf(const std::string& path) {
     doc = json::parse(data, nullptr, false);
   }
   if (doc.is_discarded() || !doc.is_object()) return;  // the reader judges
-  detail::check_required_extensions(doc, path);
-
   const fs::path source_dir = fs::absolute(fs::path(path)).parent_path();
   detail::GltfBytes bytes(doc, has_bin ? &bin : nullptr, source_dir, path);
-  std::vector<std::string> why = detail::decompress_gltf(doc, bytes, path);
-  if (add_identity_inverse_binds(doc)) why.push_back("a skin without inverseBindMatrices");
+  std::vector<std::string> why;
+  try {
+    detail::check_required_extensions(doc, path);
+    why = detail::decompress_gltf(doc, bytes, path);
+    if (add_identity_inverse_binds(doc)) why.push_back("a skin without inverseBindMatrices");
+  } catch (const json::exception& e) {
+    // A field of the wrong type (a string where a count belongs): the file's fault, said as such.
+    throw IOError(path + ": a glTF field has the wrong type (" + e.what() + ")");
+  } catch (const std::logic_error& e) {  // std::stoul and friends on a malformed attribute name
+    throw IOError(path + ": a glTF field is malformed (" + e.what() + ")");
+  }
   if (why.empty()) return;
   std::string reasons;
   for (const std::string& w : why) reasons += (reasons.empty() ? "" : ", ") + w;

@@ -192,10 +192,14 @@ ImportReport import_skinned(const std::string& path, SkinnedMesh& mesh, const Im
   if (!fs::exists(path, ec)) throw fail("file does not exist");
   if (fs::is_directory(path, ec)) throw fail("is a directory, not a file");
   if (fs::file_size(path, ec) == 0) throw fail("file is empty");
+  // The child repairs and decodes too: a decoder reads sizes and streams from the file, as a reader does.
+  if (opt.isolate) return import_isolated(path, mesh, opt);
+  return detail::import_file(path, mesh, opt);
+}
+
+ImportReport detail::import_file(const std::string& path, SkinnedMesh& mesh, const ImportOptions& opt) {
   const RepairedGltf repaired(path);
-  const std::string& read_path = repaired.path().empty() ? path : repaired.path();
-  if (opt.isolate) return import_isolated(path, read_path, mesh, opt);
-  return detail::import_scene(path, read_path, mesh, opt);
+  return import_scene(path, repaired.path().empty() ? path : repaired.path(), mesh, opt);
 }
 
 ImportReport detail::import_scene(const std::string& path, const std::string& read_path, SkinnedMesh& mesh,

@@ -77,6 +77,9 @@ struct ImportReport {
 ImportReport import_skinned(const std::string& path, SkinnedMesh& mesh, const ImportOptions& opt = {});
 
 namespace detail {
+/// import_skinned() after its checks, in this process: a glTF repaired or decoded into a private copy
+/// (GltfRepair.hh) first, then import_scene().
+ImportReport import_file(const std::string& path, SkinnedMesh& mesh, const ImportOptions& opt);
 /// import_skinned() after its checks, in this process: reads \p read_path (a repaired copy, or \p path),
 /// names \p path in errors and finds textures beside it.
 ImportReport import_scene(const std::string& path, const std::string& read_path, SkinnedMesh& mesh,

@@ -1,6 +1,7 @@
 #include "OpenMeshSkinned/IO/ImportMaterial.hh"
 
 #include "OpenMeshSkinned/IO/GltfMaterials.hh"
+#include "OpenMeshSkinned/IO/IOError.hh"
 #include "OpenMeshSkinned/IO/Textures.hh"
 
 #include <assimp/material.h>
@@ -13,6 +14,7 @@
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <new>
 
 namespace OpenMeshSkinned {
 
@@ -394,7 +396,20 @@ std::vector<Material> read_materials(const aiScene* scene, const std::string& so
                                      std::vector<std::string>& warnings) {
   std::vector<Material> file, out;
   std::vector<int> order;
-  if (read_gltf_materials(read_path, source, file, order, warnings)) {
+  bool from_file = false;
+  try {
+    from_file = read_gltf_materials(read_path, source, file, order, warnings);
+  } catch (const IOError&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {  // a field of the wrong type in the file's JSON
+    warnings.push_back(std::string("the file's materials could not be read (") + e.what() +
+                       "): kept as the reader reports them");
+    file.clear();
+    order.clear();
+  }
+  if (from_file) {
     // assimp numbers the materials it read in its own order and appends a default material for primitives
     // without one (glTF's default material is the empty one). Its names must agree with the file's.
     bool agree = order.size() <= scene->mNumMaterials && scene->mNumMaterials <= order.size() + 1;

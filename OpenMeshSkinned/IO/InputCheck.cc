@@ -61,7 +61,8 @@ void check_keys(std::vector<double>& times, std::vector<V>& values, const std::s
   if (times.size() != values.size())
     throw fail("has " + std::to_string(times.size()) + " key times but " + std::to_string(values.size()) + " values");
   for (size_t k = 0; k < times.size(); ++k) {
-    if (!std::isfinite(times[k])) throw fail("key " + std::to_string(k) + " has the time " + number(times[k]));
+    if (!std::isfinite(times[k]) || std::abs(times[k]) > kFloatMax)
+      throw fail("key " + std::to_string(k) + " has the time " + number(times[k]));
     if (std::string b = check_value(values[k]); !b.empty()) throw fail("key " + std::to_string(k) + " has " + b);
   }
   if (std::is_sorted(times.begin(), times.end())) return;
@@ -143,8 +144,9 @@ void check_clip(Clip& clip, const Skeleton& skel, size_t n_targets, const std::s
     if (mc.target < 0 || size_t(mc.target) >= n_targets)
       throw IOError(path + ": " + in_clip + " a channel moves morph target " + std::to_string(mc.target) + " of " +
                     std::to_string(n_targets));
-    check_keys(mc.times, mc.weights, in_clip + " morph target " + std::to_string(mc.target) + " weight", path,
-               [](double w) { return bad_value(w); }, rep);
+    check_keys(
+        mc.times, mc.weights, in_clip + " morph target " + std::to_string(mc.target) + " weight", path,
+        [](double w) { return bad_value(w); }, rep);
   }
 
   double first = std::numeric_limits<double>::infinity(), last = -first;
@@ -158,6 +160,8 @@ void check_clip(Clip& clip, const Skeleton& skel, size_t n_targets, const std::s
     warnings.push_back(in_clip + " its keys start at " + number(first) + " s: shifted to start at 0");
     clip.duration -= first;
     last -= first;
+    if (last > kFloatMax)
+      throw IOError(path + ": " + in_clip + " its keys span " + number(last) + " s, beyond float range");
   }
   for_each_key_list(clip, [&](std::vector<double>& t, auto& v) { merge_equal_times(t, v, rep); });
   if (std::isfinite(last) && (!std::isfinite(clip.duration) || clip.duration < last)) {

@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <iostream>
@@ -53,8 +54,7 @@ bool looks_like_oom(const std::string& message) {
   return message.find("bad_alloc") != std::string::npos || message.find("out of memory") != std::string::npos;
 }
 
-[[noreturn]] void run_child(int fd, int err_fd, const std::string& path, const std::string& read_path,
-                            const ImportOptions& opt) {
+[[noreturn]] void run_child(int fd, int err_fd, const std::string& path, const ImportOptions& opt) {
   // What the reader or the C library prints (glibc's "double free or corruption" above a crash) goes to
   // the parent, which shows it only when asked: the user sees one line.
   ::dup2(err_fd, STDERR_FILENO);
@@ -76,7 +76,7 @@ bool looks_like_oom(const std::string& message) {
   std::string out;
   try {
     SkinnedMesh mesh;
-    const ImportReport rep = detail::import_scene(path, read_path, mesh, opt);
+    const ImportReport rep = detail::import_file(path, mesh, opt);
     out.assign(1, kOk);
     append_import(mesh, rep, out);
   } catch (const std::bad_alloc&) {
@@ -91,9 +91,19 @@ bool looks_like_oom(const std::string& message) {
 
 }  // namespace
 
-ImportReport import_isolated(const std::string& path, const std::string& read_path, SkinnedMesh& mesh,
-                             const ImportOptions& opt) {
+ImportReport import_isolated(const std::string& path, SkinnedMesh& mesh, const ImportOptions& opt) {
   auto fail = [&path](const std::string& what) { return IOError(path + ": " + what); };
+  // The child's scratch files (a repaired or decoded glTF copy) go into a folder of the parent's, removed
+  // here whatever becomes of the child: a killed or crashed child cleans up nothing itself.
+  std::string scratch = (std::filesystem::temp_directory_path() / "omsk-read-XXXXXX").string();
+  if (!::mkdtemp(scratch.data())) throw fail(std::string("cannot start the isolated reader: ") + std::strerror(errno));
+  struct RemoveScratch {
+    std::string dir;
+    ~RemoveScratch() {
+      std::error_code ec;
+      std::filesystem::remove_all(dir, ec);
+    }
+  } remove_scratch{scratch};
   int fds[2], err[2];
   if (::pipe(fds) != 0) throw fail(std::string("cannot start the isolated reader: ") + std::strerror(errno));
   if (::pipe(err) != 0) {
@@ -109,7 +119,8 @@ ImportReport import_isolated(const std::string& path, const std::string& read_pa
   if (pid == 0) {
     ::close(fds[0]);
     ::close(err[0]);
-    run_child(fds[1], err[1], path, read_path, opt);
+    ::setenv("TMPDIR", scratch.c_str(), 1);
+    run_child(fds[1], err[1], path, opt);
   }
   ::close(fds[1]);
   ::close(err[1]);

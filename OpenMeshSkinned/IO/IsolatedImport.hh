@@ -8,11 +8,10 @@
 
 namespace OpenMeshSkinned {
 
-/** Forks; the child reads \p read_path (detail::import_scene) with address-space limit opt.memory_limit_mb and sends
- * the result back (ImportArchive); the parent kills it after opt.time_limit_seconds. Errors: "<path>: the reader
- * crashed (SIGSEGV) reading it (format ...)", "... ran out of memory (limit N MB) ...", "... took longer than N s
- *  ...", or the child's own IOError. */
-ImportReport import_isolated(const std::string& path, const std::string& read_path, SkinnedMesh& mesh,
-                             const ImportOptions& opt);
+/** Forks; the child reads \p path (detail::import_file: repair and decoding, then the reader) with
+ *  address-space limit opt.memory_limit_mb and sends the result back (ImportArchive); the parent kills it
+ *  after opt.time_limit_seconds. Errors: "<path>: the reader crashed (SIGSEGV) reading it (format ...)",
+ *  "... ran out of memory (limit N MB) ...", "... took longer than N s ...", or the child's own IOError. */
+ImportReport import_isolated(const std::string& path, SkinnedMesh& mesh, const ImportOptions& opt);
 
 }  // namespace OpenMeshSkinned

@@ -70,7 +70,6 @@ struct WeightSolver::CeresCache {
     options.logging_type = ceres::SILENT;
     options.minimizer_progress_to_stdout = false;
     options.max_num_iterations = 100;
-    options.max_solver_time_in_seconds = 1.0;  // a bound for any input; a well-posed solve takes microseconds
     options.function_tolerance = 1e-14;
     options.gradient_tolerance = 1e-16;
     options.parameter_tolerance = 1e-12;
