@@ -68,6 +68,9 @@ const std::map<std::string, Fixture>& fixtures() {
         run("node '" + gltfpack + "' -i '" + src + "' -o " + out + " " + flags);
         f[name + "_" + suffix] = {(dir() / out).string(), src, suffix.find("noq") == std::string::npos, false};
       }
+      // As .gltf beside its .bin, the fallback buffer is a buffer of its own, dropped after decoding.
+      run("node '" + gltfpack + "' -i '" + src + "' -o " + name + "_c_text.gltf -c");
+      f[name + "_c_text"] = {(dir() / (name + "_c_text.gltf")).string(), src, true, false};
       run("draco_transcoder -i '" + src + "' -o " + name + "_draco.glb");
       f[name + "_draco"] = {(dir() / (name + "_draco.glb")).string(), src, true, true};
     }
@@ -188,9 +191,10 @@ TEST_P(Compressed, RatioOneIsJudgedLosslessAndValid) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Packed, Compressed,
-                         ::testing::Values("wuson_c", "wuson_cc", "wuson_c_noq", "wuson_cc_noq", "wuson_draco",
-                                           "simple_skin_c", "simple_skin_cc", "simple_skin_c_noq", "simple_skin_cc_noq",
-                                           "simple_skin_draco", "engine_draco"));
+                         ::testing::Values("wuson_c", "wuson_cc", "wuson_c_noq", "wuson_cc_noq", "wuson_c_text",
+                                           "wuson_draco", "simple_skin_c", "simple_skin_cc", "simple_skin_c_noq",
+                                           "simple_skin_cc_noq", "simple_skin_c_text", "simple_skin_draco",
+                                           "engine_draco"));
 
 // Debian's Draco sample: 34 Draco primitives in 29 meshes, every one decoded by the tool before assimp
 // reads the file; every triangle the file's accessors declare arrives.

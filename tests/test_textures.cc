@@ -122,10 +122,18 @@ TEST(Textures, MissingImageIsAWarningAndTheMaterialStays) {
 TEST(Textures, EncodeKeepsPngAndJpegAndRejectsGarbage) {
   Image img;
   std::string why;
-  EXPECT_TRUE(encode_for_gltf({0x89, 'P', 'N', 'G', 1, 2}, "a.png", img, why));
+  const std::vector<unsigned char> png = {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A,  // signature
+                                          0,    0,   0,   0,   'I',  'E',  'N',  'D',  0xAE, 0x42, 0x60, 0x82};
+  EXPECT_TRUE(encode_for_gltf(png, "a.png", img, why));
   EXPECT_EQ(img.mime_type, "image/png");
-  EXPECT_TRUE(encode_for_gltf({0xFF, 0xD8, 0xFF, 0xE0}, "a.jpg", img, why));
+  EXPECT_EQ(img.data, png);
+  EXPECT_TRUE(encode_for_gltf({0xFF, 0xD8, 0xFF, 0xE0, 0, 2, 0xFF, 0xD9}, "a.jpg", img, why));
   EXPECT_EQ(img.mime_type, "image/jpeg");
+  // Cut short (a truncated file, a corrupt GLB): the validator would refuse the LOD that carried it.
+  EXPECT_FALSE(encode_for_gltf(std::vector<unsigned char>(png.begin(), png.end() - 5), "a.png", img, why));
+  EXPECT_EQ(why, "a PNG cut short (no IEND chunk where its chunks end)");
+  EXPECT_FALSE(encode_for_gltf({0xFF, 0xD8, 0xFF, 0xE0, 0, 2}, "a.jpg", img, why));
+  EXPECT_EQ(why, "a JPEG cut short (no end-of-image marker)");
   EXPECT_FALSE(encode_for_gltf({1, 2, 3, 4, 5, 6, 7, 8}, "a.bin", img, why));
   EXPECT_FALSE(why.empty());
 }

@@ -62,10 +62,11 @@ void export_gltf(const SkinnedMesh& mesh, const std::string& path) {
     model.nodes.push_back(node);
   }
   tinygltf::Scene scene;
+  std::vector<int> roots;
   for (int i = 0; i < n_joints; ++i) {
     const int p = skel.joints[i].parent;
     if (p < 0)
-      scene.nodes.push_back(i);
+      roots.push_back(i);
     else
       model.nodes[p].children.push_back(i);
   }
@@ -99,6 +100,17 @@ void export_gltf(const SkinnedMesh& mesh, const std::string& path) {
   mesh_node.mesh = 0;
   mesh_node.skin = 0;
   model.nodes.push_back(mesh_node);
+  // A skin's joints must share a root: several top-level joints (two separate hierarchies in the input)
+  // get a node above them that is no joint, so that the skin lists the input's joints and only those.
+  if (roots.size() > 1) {
+    tinygltf::Node common;
+    common.name = "joints_root";
+    common.children = roots;
+    model.nodes.push_back(common);
+    scene.nodes.push_back(n_joints + 1);
+  } else {
+    scene.nodes = roots;
+  }
   scene.nodes.push_back(n_joints);
   model.scenes.push_back(scene);
   model.defaultScene = 0;

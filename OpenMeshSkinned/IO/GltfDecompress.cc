@@ -256,7 +256,6 @@ bool decode_meshopt(json& doc, GltfBytes& bytes, const std::string& shown_as) {
         any = true;
       }
     }
-  if (any) drop_fallback_buffers(doc);
   return any;
 }
 
@@ -657,7 +656,8 @@ void check_required_extensions(const json& doc, const std::string& shown_as) {
 
 std::vector<std::string> decompress_gltf(json& doc, GltfBytes& bytes, const std::string& shown_as) {
   std::vector<std::string> done;
-  if (decode_meshopt(doc, bytes, shown_as)) {
+  const bool meshopt = decode_meshopt(doc, bytes, shown_as);
+  if (meshopt) {
     for (const char* ext : kMeshopt)
       if (declared(doc, ext)) done.push_back(ext), undeclare(doc, ext);
   }
@@ -667,6 +667,8 @@ std::vector<std::string> decompress_gltf(json& doc, GltfBytes& bytes, const std:
     if (declared(doc, kQuantization)) done.push_back(kQuantization);
     undeclare(doc, kQuantization);
   }
+  // Last: it renumbers the buffers, which \p bytes knows by their numbers until every view is decoded.
+  if (meshopt) drop_fallback_buffers(doc);
   return done;
 }
 

@@ -177,6 +177,10 @@ private:
     if (name.empty()) name = "image" + std::to_string(i);
     out.name = name;
     out.mime_type = gltf_mime_type(bytes);
+    if (const std::string cut = image_stream_problem(bytes); !cut.empty()) {
+      problem = "its image " + std::to_string(i) + " is " + cut;
+      return false;
+    }
     if (!out.mime_type.empty()) {
       out.data = std::move(bytes);  // as it is, byte for byte
       return true;

@@ -194,6 +194,18 @@ void check_input(SkinnedMesh& mesh, const std::string& path, std::vector<std::st
   for (Material& m : materials(mesh)) clean(m.name);
   if (renamed > 0)
     warnings.push_back(std::to_string(renamed) + " names were not printable UTF-8: their other bytes became '?'");
+  // glTF allows base colours in [0, 1] only (other readers' colours can be anything).
+  for (Material& m : materials(mesh)) {
+    bool clamped = false;
+    for (double& c : m.base_color) {
+      const double was = c;
+      c = std::isfinite(c) ? std::clamp(c, 0.0, 1.0) : 1.0;
+      clamped |= c != was;
+    }
+    if (clamped)
+      warnings.push_back("material \"" + m.name +
+                         "\": a base colour component outside [0, 1]: clamped (1 where it was not a number)");
+  }
   for (auto vh : mesh.vertices()) {
     const auto& p = mesh.point(vh);
     for (int c = 0; c < 3; ++c)

@@ -37,14 +37,32 @@ bool encode_rgba_png(const unsigned char* rgba, int width, int height, const std
   return stbi_write_png_to_func(append_bytes, &out.data, width, height, 4, rgba, width * 4) != 0 && !out.data.empty();
 }
 
-bool encode_for_gltf(const std::vector<unsigned char>& bytes, const std::string& name, Image& out,
-                     std::string& problem) {
-  if (starts_with(bytes, {0x89, 'P', 'N', 'G'})) {
-    out = {name, "image/png", bytes};
-    return true;
+std::string image_stream_problem(const std::vector<unsigned char>& bytes) {
+  if (starts_with(bytes, {0x89, 'P', 'N', 'G', 0x0D, 0x0A, 0x1A, 0x0A})) {
+    for (size_t at = 8; at + 12 <= bytes.size();) {
+      const size_t len =
+          size_t(bytes[at]) << 24 | size_t(bytes[at + 1]) << 16 | size_t(bytes[at + 2]) << 8 | bytes[at + 3];
+      if (len > bytes.size() - at - 12) break;
+      if (std::equal(bytes.begin() + at + 4, bytes.begin() + at + 8, "IEND")) return {};
+      at += 12 + len;
+    }
+    return "a PNG cut short (no IEND chunk where its chunks end)";
   }
   if (starts_with(bytes, {0xFF, 0xD8, 0xFF})) {
-    out = {name, "image/jpeg", bytes};
+    // Entropy-coded data escapes 0xFF, so FF D9 stands only for the end-of-image marker.
+    for (size_t at = bytes.size(); at >= 4; --at)
+      if (bytes[at - 2] == 0xFF && bytes[at - 1] == 0xD9) return {};
+    return "a JPEG cut short (no end-of-image marker)";
+  }
+  return {};
+}
+
+bool encode_for_gltf(const std::vector<unsigned char>& bytes, const std::string& name, Image& out,
+                     std::string& problem) {
+  if (starts_with(bytes, {0x89, 'P', 'N', 'G'}) || starts_with(bytes, {0xFF, 0xD8, 0xFF})) {
+    problem = image_stream_problem(bytes);
+    if (!problem.empty()) return false;
+    out = {name, starts_with(bytes, {0x89, 'P', 'N', 'G'}) ? "image/png" : "image/jpeg", bytes};
     return true;
   }
   int w = 0, h = 0, n = 0;

@@ -16,11 +16,17 @@ namespace OpenMeshSkinned {
  *  "image/ktx2" (KHR_texture_basisu), "image/webp" (EXT_texture_webp); "" for any other. */
 std::string gltf_mime_type(const std::vector<unsigned char>& bytes);
 
+/** Why the PNG or JPEG \p bytes is cut short ("" when it is whole, or another format): a PNG must end its
+ *  chunks with IEND, a JPEG hold its end-of-image marker. The glTF validator refuses a file carrying a
+ *  truncated image, and a viewer shows garbage. */
+std::string image_stream_problem(const std::vector<unsigned char>& bytes);
+
 /** Decodes \p image (any format stb_image reads) into 8-bit RGBA texels; false when it cannot. */
 bool decode_rgba(const Image& image, std::vector<unsigned char>& rgba, int& width, int& height);
 
-/** Makes a glTF-ready image from an encoded file's bytes: PNG and JPEG are kept as they are, any other
- *  format stb_image reads is re-encoded as PNG. Returns false and says why in \p problem otherwise. */
+/** Makes a glTF-ready image from an encoded file's bytes: whole PNG and JPEG files are kept as they are,
+ *  any other format stb_image reads is re-encoded as PNG. Returns false and says why in \p problem
+ *  otherwise (a truncated PNG or JPEG among them). */
 bool encode_for_gltf(const std::vector<unsigned char>& bytes, const std::string& name, Image& out,
                      std::string& problem);
 
