@@ -6,6 +6,7 @@
 
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -343,4 +344,28 @@ TEST(Export, MoreThanFourInfluencesUseASecondJointSet) {
         break;
       }
   }
+}
+
+TEST(Export, JointsOfSeveralHierarchiesShareARootThatIsNoJoint) {
+  // Two top-level joints (a corrupt or unusual hierarchy): glTF's skins need a common root, so the writer
+  // adds a node above them, and the skin still lists exactly the mesh's joints.
+  Mesh mesh = make_bending_cylinder(8, 8);
+  Skeleton& skel = skeleton(mesh);
+  ASSERT_EQ(skel.size(), 2);
+  ASSERT_EQ(skel.joints[1].parent, 0);
+  skel.joints[1].rest_local = skel.joints[0].rest_local * skel.joints[1].rest_local;
+  skel.joints[1].parent = -1;
+  clips(mesh).clear();
+  const auto out = scratch("two_roots.glb");
+  export_gltf(mesh, out.string());
+  omsk_test::expect_valid_gltf(out.string());
+  tinygltf::Model m;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  ASSERT_TRUE(loader.LoadBinaryFromFile(&m, &err, &warn, out.string())) << err;
+  ASSERT_EQ(m.skins.size(), 1u);
+  EXPECT_EQ(m.skins[0].joints, (std::vector<int>{0, 1}));
+  const auto root = std::find_if(m.nodes.begin(), m.nodes.end(), [](const auto& n) { return n.name == "joints_root"; });
+  ASSERT_NE(root, m.nodes.end());
+  EXPECT_EQ(root->children, (std::vector<int>{0, 1}));
 }
