@@ -11,35 +11,21 @@
 #include <OpenMeshSkinned/IO/Import.hh>
 #include <OpenMeshSkinned/Skin/SkinProperties.hh>
 
-#include <unistd.h>
+#include "FuzzInput.hh"
 
 #include <cstdint>
-#include <cstdio>
 #include <stdexcept>
 #include <string>
 
 namespace {
-constexpr const char* kExtensions[] = {".x",   ".md5mesh", ".fbx", ".gltf", ".glb",
-                                       ".obj", ".dae",     ".ply", ".smd",  ".b3d"};
 // Larger meshes would make each execution slow without reaching new code.
 constexpr size_t kMaxFaces = 4000;
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using Mesh = OpenMeshSkinned::SkinnedMesh;
-  if (size < 2) return 0;
-  const size_t n_ext = sizeof kExtensions / sizeof kExtensions[0];
-  static const std::string dir = [] {
-    char tmpl[] = "/tmp/omsk-fuzz-XXXXXX";
-    return std::string(mkdtemp(tmpl));
-  }();
-  const std::string path = dir + "/input" + kExtensions[data[0] % n_ext];
-  if (FILE* f = std::fopen(path.c_str(), "wb")) {
-    std::fwrite(data + 1, 1, size - 1, f);
-    std::fclose(f);
-  } else {
-    return 0;
-  }
+  const std::string path = omsk_fuzz::write_input(data, size);
+  if (path.empty()) return 0;
   Mesh mesh;
   try {
     OpenMeshSkinned::import_skinned(path, mesh);
@@ -70,7 +56,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     return 0;  // example poses that overflow (huge keys composed down a chain): refused, as documented
   }
   try {
-    OpenMeshSkinned::export_gltf(mesh, dir + "/out.glb");
+    OpenMeshSkinned::export_gltf(mesh, omsk_fuzz::scratch_dir() + "/out.glb");
   } catch (const OpenMeshSkinned::IOError&) {
   }
   return 0;

@@ -1,5 +1,6 @@
 #include "OpenMeshSkinned/IO/GltfDecompress.hh"
 
+#include "OpenMeshSkinned/IO/GlbFile.hh"
 #include "OpenMeshSkinned/IO/IOError.hh"
 
 #include <draco/compression/decode.h>
@@ -118,20 +119,6 @@ bool declared(const json& doc, const std::string& name) {
       for (const auto& e : doc[list])
         if (e == name) return true;
   return false;
-}
-
-std::string percent_decoded(const std::string& uri) {
-  std::string out;
-  for (size_t i = 0; i < uri.size(); ++i) {
-    if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
-        std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
-      out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
-      i += 2;
-    } else {
-      out += uri[i];
-    }
-  }
-  return out;
 }
 
 json& array_of(json& doc, const char* name) {

@@ -1,5 +1,6 @@
 #include "OpenMeshSkinned/IO/GltfMaterials.hh"
 
+#include "OpenMeshSkinned/IO/GlbFile.hh"
 #include "OpenMeshSkinned/IO/Textures.hh"
 
 #include <cereal/external/base64.hpp>
@@ -18,12 +19,6 @@ namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
-uint32_t le32(const std::string& s, size_t at) {
-  uint32_t v = 0;
-  std::memcpy(&v, s.data() + at, 4);
-  return v;
-}
-
 // The JSON of a .gltf or .glb and a GLB's binary chunk; false when the file is not glTF 2.0.
 bool load_document(const std::string& path, json& doc, std::vector<unsigned char>& bin) {
   std::string ext = fs::path(path).extension().string();
@@ -32,12 +27,10 @@ bool load_document(const std::string& path, json& doc, std::vector<unsigned char
   std::ifstream in(path, std::ios::binary);
   const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (data.size() >= 20 && data.compare(0, 4, "glTF") == 0) {
-    const uint32_t json_len = le32(data, 12);
-    if (data.compare(16, 4, "JSON") != 0 || 20ull + json_len > data.size()) return false;
-    doc = json::parse(data.begin() + 20, data.begin() + 20 + json_len, nullptr, false);
-    const size_t at = 20 + json_len;
-    if (at + 8 <= data.size() && data.compare(at + 4, 4, std::string("BIN\0", 4)) == 0)
-      bin.assign(data.begin() + at + 8, data.begin() + at + 8 + std::min<size_t>(le32(data, at), data.size() - at - 8));
+    detail::GlbChunks chunks;
+    if (!detail::split_glb(data, chunks)) return false;
+    doc = json::parse(chunks.json, nullptr, false);
+    bin.assign(chunks.bin.begin(), chunks.bin.end());
   } else {
     doc = json::parse(data, nullptr, false);
   }
@@ -48,20 +41,6 @@ bool load_document(const std::string& path, json& doc, std::vector<unsigned char
   return version && version->is_string() && version->get<std::string>().rfind("2", 0) == 0;
 }
 
-std::string percent_decode(const std::string& s) {
-  std::string out;
-  for (size_t i = 0; i < s.size(); ++i) {
-    if (s[i] == '%' && i + 2 < s.size() && std::isxdigit(static_cast<unsigned char>(s[i + 1])) &&
-        std::isxdigit(static_cast<unsigned char>(s[i + 2]))) {
-      out += char(std::stoi(s.substr(i + 1, 2), nullptr, 16));
-      i += 2;
-    } else {
-      out += s[i];
-    }
-  }
-  return out;
-}
-
 // The bytes of a "data:" URI; false when it is not one.
 bool data_uri(const std::string& uri, std::vector<unsigned char>& bytes) {
   if (uri.rfind("data:", 0) != 0) return false;
@@ -70,7 +49,7 @@ bool data_uri(const std::string& uri, std::vector<unsigned char>& bytes) {
   const std::string head = uri.substr(0, comma), payload = uri.substr(comma + 1);
   const std::string raw = head.size() >= 7 && head.compare(head.size() - 7, 7, ";base64") == 0
                               ? cereal::base64::decode(payload)
-                              : percent_decode(payload);
+                              : detail::percent_decoded(payload);
   bytes.assign(raw.begin(), raw.end());
   return true;
 }
@@ -129,7 +108,7 @@ private:
     }
     const std::string uri = buf->value("uri", "");
     std::string name;
-    if (!data_uri(uri, bytes) && !find_texture_file(percent_decode(uri), dir_, bytes, name, problem)) {
+    if (!data_uri(uri, bytes) && !find_texture_file(detail::percent_decoded(uri), dir_, bytes, name, problem)) {
       problem = "its buffer \"" + uri + "\" is " + problem;
       return false;
     }
@@ -164,7 +143,7 @@ private:
       const std::string uri = (*img)["uri"];
       std::string file_name;
       if (!data_uri(uri, bytes)) {
-        if (!find_texture_file(percent_decode(uri), dir_, bytes, file_name, problem)) {
+        if (!find_texture_file(detail::percent_decoded(uri), dir_, bytes, file_name, problem)) {
           problem = "image \"" + uri + "\" " + problem;
           return false;
         }

@@ -1,5 +1,6 @@
 #include "OpenMeshSkinned/IO/GltfRepair.hh"
 
+#include "OpenMeshSkinned/IO/GlbFile.hh"
 #include "OpenMeshSkinned/IO/GltfDecompress.hh"
 #include "OpenMeshSkinned/IO/IOError.hh"
 
@@ -21,11 +22,6 @@ namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
-uint32_t le32(const std::string& s, size_t at) {
-  uint32_t v = 0;
-  std::memcpy(&v, s.data() + at, 4);
-  return v;
-}
 void put32(std::string& s, uint32_t v) { s.append(reinterpret_cast<const char*>(&v), 4); }
 
 // Adds identity inverse bind matrices to every skin without them; false when none was missing.
@@ -88,25 +84,16 @@ RepairedGltf::RepairedGltf(const std::string& path) {
   const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 
   json doc;
-  std::string bin;  // the GLB's binary chunk (its payload)
-  bool has_bin = false;
-  std::string other_chunks;  // every chunk after those two, as it is
+  detail::GlbChunks chunks;
   if (glb) {
-    if (data.size() < 20 || data.compare(0, 4, "glTF") != 0) return;
-    const uint32_t json_len = le32(data, 12);
-    if (data.compare(16, 4, "JSON") != 0 || 20ull + json_len > data.size()) return;
-    doc = json::parse(data.begin() + 20, data.begin() + 20 + json_len, nullptr, false);
-    size_t at = 20 + json_len;
-    if (at + 8 <= data.size() && data.compare(at + 4, 4, "BIN\0", 4) == 0 &&
-        at + 8ull + le32(data, at) <= data.size()) {
-      bin = data.substr(at + 8, le32(data, at));
-      has_bin = true;
-      at += 8 + le32(data, at);
-    }
-    other_chunks = data.substr(std::min(at, data.size()));
+    if (!detail::split_glb(data, chunks)) return;
+    doc = json::parse(chunks.json, nullptr, false);
   } else {
     doc = json::parse(data, nullptr, false);
   }
+  std::string& bin = chunks.bin;  // the GLB's binary chunk (its payload)
+  const bool has_bin = chunks.has_bin;
+  const std::string& other_chunks = chunks.rest;       // every chunk after those two, as it is
   if (doc.is_discarded() || !doc.is_object()) return;  // the reader judges
   const fs::path source_dir = fs::absolute(fs::path(path)).parent_path();
   detail::GltfBytes bytes(doc, has_bin ? &bin : nullptr, source_dir, path);
