@@ -25,9 +25,8 @@ namespace {
 namespace fs = std::filesystem;
 using namespace OpenMeshSkinned;
 
-// At most this many vertices feed the GA's fitness, and this many frames (evenly thinned) the
-// segmentation, which keeps a deformation gradient per face and frame (72 bytes each).
-constexpr size_t kMaxFitnessVertices = 5000;
+// At most this many frames (evenly thinned) feed the segmentation, which keeps a deformation gradient per
+// face and frame (72 bytes each).
 constexpr size_t kMaxSegmentFrames = 32;
 
 bool stores_frames(const std::string& path) { return stored_frame_count(path) > 1; }
@@ -48,30 +47,6 @@ std::vector<std::string> frame_files(const std::string& input, bool sequences) {
 double frame_rate(const std::vector<std::string>& files, double fps) {
   if (fps > 0.0) return fps;
   return files.size() == 1 ? 10.0 : 24.0;
-}
-
-std::vector<size_t> choose_keyframes(const Mesh& original, size_t k, bool quiet) {
-  const size_t n = frame_times(original).size();
-  if (k > n)
-    throw UsageError("--keyframes " + std::to_string(k) + " is more than the " + std::to_string(n) + " frames");
-  const size_t stride = (original.n_vertices() + kMaxFitnessVertices - 1) / kMaxFitnessVertices;
-  std::vector<FramePoints> frames;
-  for (size_t f = 0; f < n; ++f) {
-    const FramePositions all = frame_positions(original, f);
-    FramePoints p;
-    for (size_t v = 0; v < all.size(); v += std::max<size_t>(1, stride)) p.push_back(all[v]);
-    frames.push_back(std::move(p));
-  }
-  const InterpolationError err(frames, frame_times(original));
-  const KeyframeSelection ga = select_keyframes_ga(err, k);
-  if (!quiet) {
-    const double even = select_keyframes_even(err, k).error;
-    std::cout << "key frames (GA, " << ga.generations << " generations):";
-    for (size_t f : ga.frames) std::cout << " " << f;
-    std::cout << "\n  interpolation error over all " << n << " frames: " << ga.error << " (even spacing: " << even
-              << ")\n";
-  }
-  return ga.frames;
 }
 
 std::string segmentation_json_path(const std::string& glb) {

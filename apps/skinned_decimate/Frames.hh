@@ -1,6 +1,6 @@
 #pragma once
 // Meshes animated without a skeleton in the tool (MD2/MD3/MDL, numbered sequences): which files make one,
-// its key frames (--keyframes), and the near-rigid segmentation mode (--segment).
+// and the near-rigid segmentation mode (--segment).
 
 #include "Options.hh"
 
@@ -19,10 +19,6 @@ std::vector<std::string> frame_files(const std::string& input, bool sequences);
 /// The frame rate to play \p files at: \p fps when given, else 10 for Quake's formats (their animations
 /// run at the server's 10 Hz) and 24 for sequences.
 double frame_rate(const std::vector<std::string>& files, double fps);
-
-/// --keyframes K: the K stored frames of \p original, chosen by the report's GA, that rebuild all its
-/// frames best by interpolation; prints them and the error against even spacing.
-std::vector<size_t> choose_keyframes(const Mesh& original, size_t k, bool quiet);
 
 /** --segment OUT.glb: \p mesh cut into near-rigid parts (Lee et al.) over its frames (a frame animation's
  *  stored frames, or its clips sampled), written as OUT.glb with one coloured material per part (the

@@ -51,7 +51,7 @@ std::string script_safe(std::string s) {
 
 }  // namespace
 
-void add_view(HtmlSection& section, const std::string& label, const Mesh& mesh, const Lod* lod,
+void add_view(HtmlSection& section, const std::string& label, const Mesh& mesh, const OpenMeshSkinned::LodReport* lod,
               const std::vector<float>& vertex_error) {
   Mesh copy = mesh;
   if (!vertex_error.empty()) {

@@ -2,7 +2,9 @@
 // The report page (--html) and its contact sheet (--preview): the original and every LOD side by side in a
 // self-contained page whose viewer (tools/viewer, three.js) is linked into the tool at build time.
 
-#include "Methods.hh"
+#include "Options.hh"
+
+#include <OpenMeshSkinned/Lod/LodReport.hh>
 
 #include <nlohmann/json.hpp>
 
@@ -21,7 +23,7 @@ struct HtmlSection {
 };
 
 /// Adds \p mesh as a view: exported to GLB with \p vertex_error (% of the diagonal, empty for none).
-void add_view(HtmlSection& section, const std::string& label, const Mesh& mesh, const Lod* lod,
+void add_view(HtmlSection& section, const std::string& label, const Mesh& mesh, const OpenMeshSkinned::LodReport* lod,
               const std::vector<float>& vertex_error);
 
 /// Whether this build carries the viewer (built with Node.js and the npm tools present).

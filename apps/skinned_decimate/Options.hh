@@ -49,12 +49,6 @@ struct Options {
   bool energy_error = false;  // --error energy: the paper's quartic energy as the skinned priority (default: per area)
 };
 
-// Past this many example poses the schedule stops being a sample of the clips and becomes the clips.
-constexpr int kMaxPoses = 1000;
-// What one example or held-out pose costs per vertex: posed position and pose quadric in the solver,
-// posed copies in the evaluation (measured: about 240 KB per pose on a 2,000-vertex character).
-constexpr size_t kBytesPerVertexPose = 128;
-
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };

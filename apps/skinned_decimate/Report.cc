@@ -25,7 +25,7 @@ std::string fmt(double v, int prec) {
   return os.str();
 }
 
-void print_table(const std::string& title, const std::vector<std::pair<Lod, Mesh>>& chain, bool have_heldout) {
+void print_table(const std::string& title, const std::vector<OpenMeshSkinned::LodLevel>& chain, bool have_heldout) {
   std::cout << title << "\n"
             << "  " << std::left << std::setw(8) << "ratio" << std::right << std::setw(10) << "triangles"
             << std::setw(10) << "vertices" << std::setw(10) << "seconds" << std::setw(10) << "max infl" << std::setw(14)
@@ -76,8 +76,9 @@ void print_comparison(const json& runs) {
                 << std::setw(15) << error_cell(l["heldout_hausdorff"]) << "\n";
 }
 
-json lod_json(const Lod& lod, const std::vector<OpenMeshSkinned::Clip>& clips,
-              const OpenMeshSkinned::PoseSchedule& sched, bool bind_pose_in_examples) {
+json lod_json(const OpenMeshSkinned::LodReport& lod, const std::string& file,
+              const std::vector<OpenMeshSkinned::Clip>& clips, const OpenMeshSkinned::PoseSchedule& sched,
+              bool bind_pose_in_examples) {
   json l = {{"ratio", lod.ratio},
             {"target_faces", lod.target},
             {"target_reached", lod.faces <= lod.target},
@@ -96,7 +97,7 @@ json lod_json(const Lod& lod, const std::vector<OpenMeshSkinned::Clip>& clips,
             {"example_pose_times", times_json(clips, sched.examples)},
             {"bind_pose_in_examples", bind_pose_in_examples},
             {"heldout_times", times_json(clips, sched.held_out)}};
-  if (!lod.file.empty()) l["file"] = lod.file;
+  if (!file.empty()) l["file"] = file;
   return l;
 }
 

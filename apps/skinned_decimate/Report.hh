@@ -1,7 +1,9 @@
 #pragma once
 // What a run prints and writes: the table per character and method, the comparison table, the JSON report.
 
-#include "Methods.hh"
+#include "Options.hh"
+
+#include <OpenMeshSkinned/Lod/LodReport.hh>
 
 #include <OpenMeshSkinned/Skin/PoseSchedule.hh>
 
@@ -18,13 +20,14 @@ using json = nlohmann::ordered_json;
 std::string fmt(double v, int prec);
 
 /// The LOD table, and a line per level whose target could not be reached.
-void print_table(const std::string& title, const std::vector<std::pair<Lod, Mesh>>& chain, bool have_heldout);
+void print_table(const std::string& title, const std::vector<OpenMeshSkinned::LodLevel>& chain, bool have_heldout);
 
 /// One table over several runs: method x LOD.
 void print_comparison(const json& runs);
 
 /// The report entry of one level: what was asked, what came out, and in which poses it was judged.
-json lod_json(const Lod& lod, const std::vector<OpenMeshSkinned::Clip>& clips,
-              const OpenMeshSkinned::PoseSchedule& sched, bool bind_pose_in_examples);
+json lod_json(const OpenMeshSkinned::LodReport& lod, const std::string& file,
+              const std::vector<OpenMeshSkinned::Clip>& clips, const OpenMeshSkinned::PoseSchedule& sched,
+              bool bind_pose_in_examples);
 
 }  // namespace skinned_decimate

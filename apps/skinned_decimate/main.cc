@@ -1,9 +1,9 @@
 // skinned-decimate: LOD chains from skinned characters, judged in poses the decimater never saw.
-#include "Methods.hh"
 #include "Options.hh"
 #include "Run.hh"
 
 #include <OpenMeshSkinned/IO/PrintableText.hh>
+#include <OpenMeshSkinned/Lod/LodMethods.hh>
 #include <OpenMeshSkinned/Solver/HugePages.hh>
 
 #include <CLI/CLI.hpp>
@@ -18,7 +18,7 @@ namespace {
 
 std::string method_help() {
   std::string s = "Priority module:";
-  for (const Method& m : methods()) s += std::string(" ") + m.name + " (" + m.help + "),";
+  for (const auto& m : OpenMeshSkinned::lod_methods()) s += std::string(" ") + m.name + " (" + m.help + "),";
   s.back() = '.';
   return s;
 }
@@ -51,7 +51,7 @@ int main(int argc, char** argv) {
   app.add_option("--max-influences", opt.max_influences, "Bone influences per vertex at most (1-8, default 4)");
   app.add_option("--poses", opt.poses,
                  "Example poses: K evenly spaced times over the clip, both ends included, plus the bind pose (1-" +
-                     std::to_string(kMaxPoses) + ", default 8)");
+                     std::to_string(OpenMeshSkinned::kMaxLodPoses) + ", default 8)");
   app.add_option("--pose-clip", opt.pose_clip,
                  "Clip (name or index) for the example poses; default: all clips end to end");
   app.add_option("--method", opt.method, method_help());
@@ -160,6 +160,9 @@ int main(int argc, char** argv) {
   try {
     return run(opt);
   } catch (const UsageError& e) {
+    std::cerr << "skinned-decimate: " << OpenMeshSkinned::printable_line(e.what(), 1000) << "\n";
+    return 2;
+  } catch (const OpenMeshSkinned::LodOptionsError& e) {
     std::cerr << "skinned-decimate: " << OpenMeshSkinned::printable_line(e.what(), 1000) << "\n";
     return 2;
   } catch (const std::bad_alloc&) {

@@ -1,4 +1,4 @@
-#include "Methods.hh"
+#include "LodMethods.hh"
 
 #include <OpenMeshSkinned/Decimater/Baselines/ModDeformationSensitiveT.hh>
 #include <OpenMeshSkinned/Decimater/Baselines/ModPoseIndependentQuadricT.hh>
@@ -14,49 +14,47 @@
 #include <OpenMeshSkinned/Decimater/ModSkinnedQuadricT.hh>
 #include <OpenMeshSkinned/Decimater/ModWeightCapT.hh>
 #include <OpenMeshSkinned/Eval/SurfaceDistance.hh>
+#include <OpenMeshSkinned/Skin/SkinProperties.hh>
 
 #include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
 #include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
 #include <OpenMesh/Tools/Decimater/Observer.hh>
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
-#include <cstdio>
-#include <iostream>
 #include <numeric>
 #include <optional>
 #include <stdexcept>
 
-namespace skinned_decimate {
+namespace OpenMeshSkinned {
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
 // The lazy driver: verdicts asked right before each collapse, edges solved ahead on --threads threads.
-using Decimater = OpenMeshSkinned::LazyDecimaterT<Mesh>;
+using Mesh = SkinnedMesh;
+using Decimater = LazyDecimaterT<Mesh>;
 
 // The modules a chain may use; each method adds its own.
 struct Handles {
-  OpenMeshSkinned::ModSkinnedQuadricT<Mesh>::Handle skinned;
-  OpenMeshSkinned::ModSkinnedFoldOverT<Mesh>::Handle fold_over;
-  OpenMeshSkinned::ModWeightCapT<Mesh>::Handle cap;
-  OpenMeshSkinned::ModJointGuardT<Mesh>::Handle guard;
+  ModSkinnedQuadricT<Mesh>::Handle skinned;
+  ModSkinnedFoldOverT<Mesh>::Handle fold_over;
+  ModWeightCapT<Mesh>::Handle cap;
+  ModJointGuardT<Mesh>::Handle guard;
   OpenMesh::Decimater::ModQuadricT<Mesh>::Handle quadric;
   OpenMesh::Decimater::ModNormalFlippingT<Mesh>::Handle normal_flipping;
-  OpenMeshSkinned::ModRestPoseQuadricT<Mesh>::Handle rest;
-  OpenMeshSkinned::ModDeformationSensitiveT<Mesh>::Handle dsd;
-  OpenMeshSkinned::ModPoseIndependentQuadricT<Mesh>::Handle decoro;
-  OpenMeshSkinned::ModTriangleCompactnessT<Mesh>::Handle compact;
-  OpenMeshSkinned::ModFrameQuadricT<Mesh>::Handle frames;
-  OpenMeshSkinned::ModDeformationWeightedQuadricT<Mesh>::Handle deform;
-  OpenMeshSkinned::ModFrameFoldOverT<Mesh>::Handle frame_fold;
-  OpenMeshSkinned::ModDeviationBoundT<Mesh>::Handle bound;
+  ModRestPoseQuadricT<Mesh>::Handle rest;
+  ModDeformationSensitiveT<Mesh>::Handle dsd;
+  ModPoseIndependentQuadricT<Mesh>::Handle decoro;
+  ModTriangleCompactnessT<Mesh>::Handle compact;
+  ModFrameQuadricT<Mesh>::Handle frames;
+  ModDeformationWeightedQuadricT<Mesh>::Handle deform;
+  ModFrameFoldOverT<Mesh>::Handle frame_fold;
+  ModDeviationBoundT<Mesh>::Handle bound;
 };
 
 struct MethodModules {
-  Method method;
+  LodMethod method;
   void (*add)(Decimater&, Handles&);  // every method but OpenMesh's own gets the skinned fold-over check
 };
 
@@ -84,30 +82,23 @@ const std::vector<MethodModules>& table() {
   return t;
 }
 
-// Percent of collapses on a terminal, once the run has taken a second.
+// The share of the chain's collapses done, to the caller; its answer can stop the run.
 class Progress : public OpenMesh::Decimater::Observer {
 public:
-  Progress(bool on, size_t total, std::string label)
-      : Observer(std::max<size_t>(1, total / 200)),
-        on_(on),
-        total_(std::max<size_t>(1, total)),
-        label_(std::move(label)) {}
+  Progress(const LodCallbacks& callbacks, size_t total)
+      : Observer(std::max<size_t>(1, total / 200)), callbacks_(callbacks), total_(std::max<size_t>(1, total)) {}
   void set_done_before(size_t n) { before_ = n; }
   void notify(size_t step) override {
-    if (!on_ || Clock::now() - start_ < std::chrono::seconds(1)) return;
-    std::fprintf(stderr, "\r%s: %3d%% of collapses", label_.c_str(), int(100.0 * (before_ + step) / total_));
-    shown_ = true;
+    if (callbacks_.progress && !callbacks_.progress("decimating", std::min(1.0, double(before_ + step) / total_)))
+      cancelled_ = true;
   }
-  ~Progress() override {
-    if (shown_) std::fprintf(stderr, "\r%*s\r", int(label_.size()) + 20, "");
-  }
+  bool abort() const override { return cancelled_; }
+  bool cancelled() const { return cancelled_; }
 
 private:
-  bool on_;
+  const LodCallbacks& callbacks_;
   size_t total_, before_ = 0;
-  std::string label_;
-  Clock::time_point start_ = Clock::now();
-  bool shown_ = false;
+  bool cancelled_ = false;
 };
 
 // Faces not deleted (n_faces() counts deleted ones until garbage collection).
@@ -141,30 +132,31 @@ size_t fold_fallbacks(Decimater& dec, Handles& h) {
 }  // namespace
 
 int max_influences_of(const Mesh& mesh) {
-  const auto h = OpenMeshSkinned::influences_handle(mesh);
+  const auto h = influences_handle(mesh);
   int n = 0;
   for (auto vh : mesh.vertices()) n = std::max(n, mesh.property(h, vh).size());
   return n;
 }
 
-const std::vector<Method>& methods() {
-  static const std::vector<Method> m = [] {
-    std::vector<Method> out;
+const std::vector<LodMethod>& lod_methods() {
+  static const std::vector<LodMethod> m = [] {
+    std::vector<LodMethod> out;
     for (const auto& t : table()) out.push_back(t.method);
     return out;
   }();
   return m;
 }
 
-std::string method_names() {
+std::string lod_method_names() {
+  const auto& m = lod_methods();
   std::string s;
-  for (size_t i = 0; i < methods().size(); ++i)
-    s += (i == 0 ? "" : i + 1 == methods().size() ? " or " : ", ") + std::string(methods()[i].name);
+  for (size_t i = 0; i < m.size(); ++i) s += (i == 0 ? "" : i + 1 == m.size() ? " or " : ", ") + std::string(m[i].name);
   return s;
 }
 
-bool is_method(const std::string& name) {
-  return std::any_of(methods().begin(), methods().end(), [&](const Method& m) { return name == m.name; });
+bool is_lod_method(const std::string& name) {
+  const auto& m = lod_methods();
+  return std::any_of(m.begin(), m.end(), [&](const LodMethod& x) { return name == x.name; });
 }
 
 void keep_as_reference_only(Mesh& mesh) {
@@ -174,26 +166,25 @@ void keep_as_reference_only(Mesh& mesh) {
   while (mesh.has_face_normals()) mesh.release_face_normals();
 }
 
-std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vector<OpenMeshSkinned::Pose>& examples,
-                                              const std::vector<size_t>& targets, const std::vector<double>& ratios,
-                                              const Options& opt, const std::string& method, const std::string& label,
-                                              const std::function<void()>& copied) {
+std::vector<LodLevel> decimate_chain(const Mesh& input, const std::vector<Pose>& examples,
+                                     const std::vector<size_t>& targets, const std::vector<double>& ratios,
+                                     const LodOptions& opt, const std::string& method, const LodCallbacks& callbacks) {
   const auto it =
       std::find_if(table().begin(), table().end(), [&](const MethodModules& t) { return method == t.method.name; });
   if (it == table().end()) throw std::logic_error("unknown method " + method);
   // OpenMesh's meshes have no move constructor (their kernels declare destructors): a "moved" mesh is
   // copied, and on a large character each copy is ~62 MB at the decimation's peak. So the chain is sized
   // up front and its last level is the working mesh, decimated in place; only earlier levels are copies.
-  std::vector<std::pair<Lod, Mesh>> out(targets.size());
-  Mesh& mesh = out.back().second;
+  std::vector<LodLevel> out(targets.size());
+  Mesh& mesh = out.back().mesh;
   mesh = input;
-  OpenMeshSkinned::example_poses(mesh) = examples;
-  if (copied) copied();
+  example_poses(mesh) = examples;
+  if (callbacks.input_copied) callbacks.input_copied();
   const size_t n_vertices_in = mesh.n_vertices();
   // The frame methods never change a skin, so the cap is applied once, up front: each vertex keeps its
   // heaviest --max-influences bones, renormalised (its trajectories are then those of the capped skin).
   if (method == "frames" || method == "deform") {
-    const auto h = OpenMeshSkinned::influences_handle(mesh);
+    const auto h = influences_handle(mesh);
     for (auto vh : mesh.vertices())
       if (mesh.property(h, vh).size() > opt.max_influences) mesh.property(h, vh).keep_heaviest(opt.max_influences);
   }
@@ -212,19 +203,19 @@ std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vect
   }
   if (h.skinned.is_valid()) dec->module(h.skinned).set_error_per_area(!opt.energy_error);
   // The bound needs the shared solver's placement and poses: the frame methods place vertices themselves.
-  const double diagonal = OpenMeshSkinned::bbox_diagonal(mesh);
+  const double diagonal = bbox_diagonal(mesh);
   if (opt.max_error > 0.0) {
     if (!h.frame_fold.is_valid() && !h.frames.is_valid()) {
       dec->add(h.bound);
       dec->module(h.bound).set_max_deviation(opt.max_error / 100.0 * diagonal);
     } else {
-      std::cerr << "skinned-decimate: warning: --max-error does not apply to --method " << method
-                << " (it places vertices itself); its LODs are not bounded\n";
+      callbacks.warn("--max-error does not apply to --method " + method +
+                     " (it places vertices itself); its LODs are not bounded");
     }
   }
   if (opt.threads > 0) dec->set_threads(opt.threads);
   if (!dec->initialize()) throw std::runtime_error("the decimater did not initialize");
-  Progress progress(!opt.quiet && isatty(2), n_vertices_in - targets.back() / 2, label);
+  Progress progress(callbacks, n_vertices_in - targets.back() / 2);
   dec->set_observer(&progress);
 
   const auto t0 = Clock::now();
@@ -234,7 +225,8 @@ std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vect
     // decimate_to_faces counts deleted faces too until garbage collection, which would also renumber the
     // vertices under the solver's feet: aim at the target plus the faces already deleted instead.
     collapses += dec->decimate_to_faces(0, targets[i] + (mesh.n_faces() - live_faces(mesh)));
-    Lod lod;
+    if (progress.cancelled()) throw LodCancelled();
+    LodReport lod;
     // Reach the requested count: when every collapse left folds a face by more than 90 degrees in some
     // pose, make such collapses at the cheapest placement that folds nothing, then allow a larger turn step
     // by step (and say so), unless --strict-fold, or --max-error, which puts the bound before the count
@@ -258,6 +250,7 @@ std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vect
         if (angle == 90.0 && !h.fold_over.is_valid()) continue;
         set_fold(angle, true);
         collapses += dec->decimate_to_faces(0, targets[i] + (mesh.n_faces() - now));
+        if (progress.cancelled()) throw LodCancelled();
         lod.fold_limit = angle;
       }
       lod.fold_fallbacks = fold_fallbacks(*dec, h) - fallbacks_before;
@@ -271,7 +264,7 @@ std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vect
     if (i + 1 == targets.size()) dec.reset();
     // Earlier levels are copies, with the deleted elements until garbage collection: the working mesh
     // cannot be renumbered under the solver.
-    Mesh& snap = out[i].second;
+    Mesh& snap = out[i].mesh;
     if (i + 1 < targets.size()) snap = mesh;
     snap.garbage_collection();
     for (auto vh : snap.vertices()) snap.status(vh).set_locked(false);
@@ -286,9 +279,9 @@ std::vector<std::pair<Lod, Mesh>> build_chain(const Mesh& input, const std::vect
     if (lod.at_floor) lod.pieces = count_pieces(snap);
     lod.vertices = snap.n_vertices();
     lod.max_influences = max_influences_of(snap);
-    out[i].first = lod;
+    out[i].report = lod;
   }
   return out;
 }
 
-}  // namespace skinned_decimate
+}  // namespace OpenMeshSkinned

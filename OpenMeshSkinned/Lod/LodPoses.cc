@@ -1,0 +1,58 @@
+#include "LodPoses.hh"
+
+#include <OpenMeshSkinned/Deform/PoseSelection.hh>
+#include <OpenMeshSkinned/IO/IOError.hh>
+#include <OpenMeshSkinned/Skin/FrameAnimation.hh>
+#include <OpenMeshSkinned/Skin/SkinProperties.hh>
+
+#include <algorithm>
+#include <iomanip>
+#include <sstream>
+
+namespace OpenMeshSkinned {
+
+std::string fixed_number(double v, int precision) {
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(precision) << v;
+  return os.str();
+}
+
+LodPoses select_lod_poses(const SkinnedMesh& mesh, const LodOptions& opt, const std::string& name,
+                          const LodCallbacks& callbacks, bool poses_given) {
+  const auto& all = clips(mesh);
+  const Skeleton& skel = skeleton(mesh);
+  LodPoses p;
+  if (all.empty()) {
+    if (poses_given)
+      callbacks.warn(name + " has no animation: --poses ignored, decimating and judging in the rest pose only");
+    p.examples = p.heldout = {Pose::identity(skel.size())};
+    return p;
+  }
+  // A frame animation learns from, and is judged on, stored frames, never the blend of two; with few of
+  // them, half are kept back to judge on.
+  const size_t stored = frame_times(mesh).size();
+  const int k = stored > 0 ? std::min<int>(opt.poses, int((stored + 1) / 2)) : opt.poses;
+  p.schedule = make_pose_schedule(all, k, lod_pose_clip(opt, mesh, name));
+  snap_to_frames(p.schedule, frame_times(mesh));
+  if (opt.pose_select_ga) {
+    const auto candidates = candidate_frames(mesh, p.schedule.held_out);
+    if (candidates.size() >= 2) p.schedule.examples = select_poses_ga(mesh, candidates, size_t(k));
+  }
+  p.examples = poses_at(skel, all, p.schedule.examples);
+  // The bind pose too, unless asked not to: it is the pose every other tool judges, and a handful of
+  // clip frames can miss the neutral configuration entirely.
+  if (opt.bind_pose) p.examples.push_back(Pose::identity(skel.size()));
+  p.heldout = poses_at(skel, all, p.schedule.held_out.empty() ? p.schedule.examples : p.schedule.held_out);
+  std::string line = name + ": example poses" + (opt.pose_select_ga ? " (chosen by the key-frame GA)" : "") + " at";
+  for (const auto& t : p.schedule.examples) line += " " + all[t.clip].name + "@" + fixed_number(t.time, 3) + "s";
+  callbacks.say(line + (opt.bind_pose ? " + bind pose" : ""));
+  // Keys of huge but finite values can still overflow once composed down a chain of joints.
+  for (const auto* set : {&p.examples, &p.heldout})
+    for (const Pose& pose : *set)
+      if (!pose.finite())
+        throw IOError(name + ": pose \"" + pose.label +
+                      "\" is not finite: its keys' translations or scales are too large to compose");
+  return p;
+}
+
+}  // namespace OpenMeshSkinned
