@@ -1,13 +1,16 @@
 // The job as a library call: what make_lods() gives a C++ caller, and that the CLI is only a shell around it.
 #include "helpers.hh"
 #include "run_command.hh"
+#include "validate.hh"
 
+#include <OpenMeshSkinned/Eval/SurfaceDistance.hh>
 #include <OpenMeshSkinned/IO/Import.hh>
 #include <OpenMeshSkinned/Lod/MakeLods.hh>
 #include <OpenMeshSkinned/Lod/SaveLods.hh>
 #include <OpenMeshSkinned/Mesh/Procedural.hh>
 
 #include <gtest/gtest.h>
+#include <tiny_gltf.h>
 
 #include <cstring>
 #include <filesystem>
@@ -157,4 +160,38 @@ TEST(MakeLods, CliWritesWhatTheLibraryMakes) {
   ASSERT_EQ(paths.size(), 2u);
   EXPECT_EQ(bytes(dir / "cli_lod1.glb"), bytes(paths[0]));
   EXPECT_EQ(bytes(dir / "cli_lod2.glb"), bytes(paths[1]));
+}
+
+// Switch hints: the screen size below which the held-out Hausdorff error is under a pixel, in each LOD's
+// report and in its glTF node's extras.
+TEST(MakeLods, SwitchHintsInReportsAndFiles) {
+  const SkinnedMesh leg = make_bending_cylinder(16, 32);
+  const LodChain chain = make_lods(leg, quick({0.5, 0.1}));
+  const auto& coarse = chain.levels[1].report;
+  const auto& fine = chain.levels[0].report;
+  // One pixel of a 1080-line screen: the error over the diagonal, the LOD spanning the screen's height.
+  const double diagonal = bbox_diagonal(leg);
+  const double error = coarse.hausdorff / 100.0 * diagonal;
+  EXPECT_NEAR(coarse.switch_hint.unreal_screen_size, std::min(1.0, diagonal / (error * 1080)), 1e-12);
+  EXPECT_LT(coarse.switch_hint.unreal_screen_size, 1.0);
+  EXPECT_LE(coarse.switch_hint.unity_relative_height, coarse.switch_hint.unreal_screen_size);
+  EXPECT_LT(coarse.switch_hint.unreal_screen_size, fine.switch_hint.unreal_screen_size)
+      << "the coarser LOD is for smaller sizes";
+
+  const fs::path dir = omsk_test::scratch_dir("make_lods", "hints");
+  const auto paths = save_lods(chain, (dir / "leg.glb").string());
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  ASSERT_TRUE(loader.LoadBinaryFromFile(&model, &err, &warn, paths[1])) << err;
+  const auto mesh_node =
+      std::find_if(model.nodes.begin(), model.nodes.end(), [](const auto& n) { return n.mesh >= 0; });
+  ASSERT_NE(mesh_node, model.nodes.end());
+  const auto& extras = mesh_node->extras;
+  ASSERT_TRUE(extras.Has("lod_unreal_screen_size"));
+  EXPECT_NEAR(extras.Get("lod_unreal_screen_size").GetNumberAsDouble(), coarse.switch_hint.unreal_screen_size, 1e-12);
+  EXPECT_NEAR(extras.Get("lod_unity_relative_screen_height").GetNumberAsDouble(),
+              coarse.switch_hint.unity_relative_height, 1e-12);
+  EXPECT_EQ(extras.Get("lod_hint_screen_height_px").GetNumberAsDouble(), 1080.0);
+  omsk_test::expect_valid_gltf(paths[1]);
 }

@@ -31,7 +31,9 @@ void write_node_trs(tinygltf::Node& node, const Eigen::Matrix4d& local) {
 
 }  // namespace
 
-void export_gltf(const SkinnedMesh& mesh, const std::string& path) {
+void export_gltf(const SkinnedMesh& mesh, const std::string& path) { export_gltf(mesh, path, {}); }
+
+void export_gltf(const SkinnedMesh& mesh, const std::string& path, const GltfNodeExtras& node_extras) {
   namespace fs = std::filesystem;
   auto fail = [&path](const std::string& what) -> IOError { return IOError(path + ": " + what); };
   std::string ext = fs::path(path).extension().string();
@@ -99,6 +101,11 @@ void export_gltf(const SkinnedMesh& mesh, const std::string& path) {
   mesh_node.name = "skinned_mesh";
   mesh_node.mesh = 0;
   mesh_node.skin = 0;
+  if (!node_extras.empty()) {
+    tinygltf::Value::Object extras;
+    for (const auto& [name, value] : node_extras) extras[name] = tinygltf::Value(value);
+    mesh_node.extras = tinygltf::Value(extras);
+  }
   model.nodes.push_back(mesh_node);
   // A skin's joints must share a root: several top-level joints (two separate hierarchies in the input)
   // get a node above them that is no joint, so that the skin lists the input's joints and only those.

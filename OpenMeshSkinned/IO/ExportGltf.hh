@@ -10,6 +10,8 @@
 #include "OpenMeshSkinned/Mesh/SkinnedMesh.hh"
 
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace OpenMeshSkinned {
 
@@ -21,5 +23,10 @@ inline constexpr const char* kVertexErrorProperty = "v:omsk_error";
  *  The file appears complete or not at all (written beside the target, then renamed).
  *  Throws IOError when the extension is neither, the folder is not writable, or the skin is invalid. */
 void export_gltf(const SkinnedMesh& mesh, const std::string& path);
+
+/// Numbers for the mesh node's `extras` (e.g. a LOD's switch hints), name and value.
+using GltfNodeExtras = std::vector<std::pair<std::string, double>>;
+/// As export_gltf(mesh, path), the mesh node carrying \p node_extras.
+void export_gltf(const SkinnedMesh& mesh, const std::string& path, const GltfNodeExtras& node_extras);
 
 }  // namespace OpenMeshSkinned

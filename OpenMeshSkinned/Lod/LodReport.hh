@@ -2,6 +2,7 @@
 // One level of a LOD chain as made and measured, and the chain: the levels with the poses they were made in
 // and judged in.
 
+#include <OpenMeshSkinned/Lod/SwitchHints.hh>
 #include <OpenMeshSkinned/Mesh/SkinnedMesh.hh>
 #include <OpenMeshSkinned/Skin/PoseSchedule.hh>
 #include <OpenMeshSkinned/Skin/Skeleton.hh>
@@ -27,6 +28,7 @@ struct LodReport {
   double deviation_bound = -1.0;      ///< max_error: bound on the input's vertices' distance, % (< 0: none)
   bool evaluated = false;             ///< false when not evaluated
   double rms = 0.0, hausdorff = 0.0;  ///< held-out, % of the input's rest-pose bounding-box diagonal
+  LodSwitchHint switch_hint;          ///< when an engine may switch to it (from the held-out Hausdorff error)
   std::vector<float> vertex_error;    ///< per vertex, max over held-out frames, % (per_vertex_error only)
 };
 

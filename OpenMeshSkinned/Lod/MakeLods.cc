@@ -167,6 +167,7 @@ LodChain make_lods(const SkinnedMesh& mesh, const LodOptions& opt, const LodCall
       lod.evaluated = true;
       lod.rms = errors[i].rms;
       lod.hausdorff = errors[i].hausdorff;
+      lod.switch_hint = switch_hint(mesh, lod.hausdorff);
       lod.vertex_error = errors[i].vertex_error;
     }
   }

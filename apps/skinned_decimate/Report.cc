@@ -97,6 +97,10 @@ json lod_json(const OpenMeshSkinned::LodReport& lod, const std::string& file,
             {"example_pose_times", times_json(clips, sched.examples)},
             {"bind_pose_in_examples", bind_pose_in_examples},
             {"heldout_times", times_json(clips, sched.held_out)}};
+  if (lod.evaluated)
+    l["switch_hint"] = {{"screen_height_px", OpenMeshSkinned::kSwitchHintScreenHeight},
+                        {"unity_relative_screen_height", lod.switch_hint.unity_relative_height},
+                        {"unreal_screen_size", lod.switch_hint.unreal_screen_size}};
   if (!file.empty()) l["file"] = file;
   return l;
 }

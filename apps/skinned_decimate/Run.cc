@@ -116,7 +116,7 @@ json run_character(const Mesh& mesh, const std::string& name, const Options& opt
     if (outputs) {
       stage = "writing the LODs";
       files.push_back(lod_file_path(output, i, chain.levels.size()));
-      export_gltf(lmesh, outputs->staging(files.back()));
+      export_gltf(lmesh, outputs->staging(files.back()), lod_node_extras(lod));
     }
     lods.push_back(
         lod_json(lod, outputs ? files.back() : "", clips(mesh), chain.poses.schedule, opt.bind_pose && animated));
