@@ -40,6 +40,7 @@ struct Lod {
   bool at_floor = false;              // stopped above the target where no collapse keeps the mesh manifold
   size_t pieces = 0;                  // then: its connected pieces
   size_t fold_fallbacks = 0;          // collapses made off their solved placement, which folded, to reach it
+  size_t non_finite_weights = 0;      // weight problems the solver refused as non-finite, this level and before
   double deviation_bound = -1.0;      // --max-error: bound on the original's vertices' distance, % (< 0: none)
   bool evaluated = false;             // false with --no-eval
   double rms = 0.0, hausdorff = 0.0;  // % of the rest-pose bounding-box diagonal
