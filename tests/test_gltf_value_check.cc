@@ -45,6 +45,34 @@ fs::path with_value(const char* name, T value, size_t v, size_t c) {
 
 fs::path with_weight(float value, size_t v, size_t c) { return with_value("WEIGHTS_0", value, v, c); }
 
+// Attribute \p name of simple_skin made sparse: its element \p index replaced by \p values (T: the component
+// type), the index stored as an unsigned short.
+template <typename T>
+fs::path with_sparse(const char* name, std::vector<T> values, uint32_t index) {
+  return edited([&](tinygltf::Model& m) {
+    auto& acc = m.accessors[m.meshes[0].primitives[0].attributes.at(name)];
+    auto& bytes = m.buffers[0].data;
+    auto add_view = [&](const void* data, size_t n) {
+      while (bytes.size() % 4) bytes.push_back(0);
+      tinygltf::BufferView view;
+      view.buffer = 0;
+      view.byteOffset = bytes.size();
+      view.byteLength = n;
+      bytes.insert(bytes.end(), static_cast<const unsigned char*>(data), static_cast<const unsigned char*>(data) + n);
+      m.bufferViews.push_back(view);
+      return int(m.bufferViews.size()) - 1;
+    };
+    const uint16_t i16 = uint16_t(index);
+    acc.sparse.isSparse = true;
+    acc.sparse.count = 1;
+    acc.sparse.indices.bufferView = add_view(&i16, sizeof i16);
+    acc.sparse.indices.byteOffset = 0;
+    acc.sparse.indices.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    acc.sparse.values.bufferView = add_view(values.data(), values.size() * sizeof(T));
+    acc.sparse.values.byteOffset = 0;
+  });
+}
+
 std::string message(const fs::path& f) {
   try {
     check_gltf_values(f.string(), "shown.gltf");
@@ -101,4 +129,36 @@ TEST(GltfValueCheck, AnAccessorClaimingMoreThanItsViewHoldsIsAnError) {
   } catch (const IOError& e) {
     EXPECT_EQ(std::string(e.what()).find(f.string() + ": accessor 3 (WEIGHTS_0"), 0u) << e.what();
   }
+}
+
+TEST(GltfValueCheck, SparseSkinAccessorsAreCheckedAsTheReaderPatchesThem) {
+  // A NaN weight or a joint outside the skin in a sparse substitute is refused as in the base data.
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const auto w = with_sparse<float>("WEIGHTS_0", {nan, 0.0f, 0.0f, 0.0f}, 2);
+  EXPECT_EQ(message(w), "shown.gltf: vertex 2 of mesh 0 (\"\") has a non-finite weight in WEIGHTS_0");
+  SkinnedMesh mesh;
+  EXPECT_THROW(import_skinned(w.string(), mesh), IOError);
+  // Vertex 4 weighs its second joint by 0.5 in the base data.
+  const auto j = with_sparse<uint16_t>("JOINTS_0", {0, 7, 0, 0}, 4);
+  EXPECT_EQ(message(j),
+            "shown.gltf: vertex 4 of mesh 0 (\"\") names joint 7 in JOINTS_0, but skin 0 (\"\") has 2 joints");
+  // Valid substitutes pass.
+  EXPECT_EQ(message(with_sparse<float>("WEIGHTS_0", {0.25f, 0.75f, 0.0f, 0.0f}, 2)), "accepted");
+  EXPECT_EQ(message(with_sparse<uint16_t>("JOINTS_0", {1, 0, 0, 0}, 4)), "accepted");
+}
+
+TEST(GltfValueCheck, ASparseIndexOutsideItsAccessorIsRefusedForPositionsToo) {
+  const tinygltf::Model m = omsk_spec::load(simple_skin);
+  const int pos = m.meshes[0].primitives[0].attributes.at("POSITION");
+  const size_t n = m.accessors[pos].count;
+  const auto f = with_sparse<float>("POSITION", {0.0f, 1.0f, 0.0f}, uint32_t(n));
+  EXPECT_EQ(message(f), "shown.gltf: accessor " + std::to_string(pos) +
+                            " (POSITION of mesh 0 (\"\")) substitutes element " + std::to_string(n) +
+                            " (sparse entry 0) of its " + std::to_string(n));
+  SkinnedMesh mesh;
+  EXPECT_THROW(import_skinned(f.string(), mesh), IOError);
+  EXPECT_EQ(message(with_sparse<float>("POSITION", {0.0f, 1.0f, 0.0f}, 0)), "accepted");
+  // Substitutes that reach past their buffer view are refused before anything reads them.
+  const auto w = with_sparse<float>("WEIGHTS_0", {0.5f, 0.5f}, 2);  // half a VEC4
+  EXPECT_NE(message(w).find("claims 1 sparse values of 16 bytes"), std::string::npos) << message(w);
 }

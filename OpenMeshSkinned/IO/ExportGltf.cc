@@ -88,7 +88,7 @@ void export_gltf(const SkinnedMesh& mesh, const std::string& path, const GltfNod
   model.skins.push_back(skin);
 
   try {
-    detail::write_materials(mats, buf, model);
+    detail::write_materials(mats, detail::written_uv_sets(mesh), buf, model);
   } catch (const std::bad_alloc&) {
     throw;
   } catch (const std::exception& e) {  // a carried field of the wrong type (e.g. a string alphaCutoff)

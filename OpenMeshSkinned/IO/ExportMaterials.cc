@@ -1,5 +1,6 @@
 #include "OpenMeshSkinned/IO/ExportMaterials.hh"
 
+#include "OpenMeshSkinned/IO/ExportParts.hh"
 #include "OpenMeshSkinned/IO/GltfMaterials.hh"
 #include "OpenMeshSkinned/IO/PrintableText.hh"
 
@@ -62,25 +63,56 @@ std::vector<double> numbers(const json& j, std::vector<double> fallback) {
   return v;
 }
 
+// The texture info's KHR_texture_transform object, or null.
+json* texture_transform(json& info) {
+  if (!info.contains("extensions") || !info["extensions"].is_object()) return nullptr;
+  json& ext = info["extensions"];
+  return ext.contains("KHR_texture_transform") && ext["KHR_texture_transform"].is_object()
+             ? &ext["KHR_texture_transform"]
+             : nullptr;
+}
+
+// The UV set a texture info reads: its texCoord, or its transform's where that overrides it.
+int tex_coord(const json& info) {
+  json copy = info;
+  const json* t = texture_transform(copy);
+  if (t && t->contains("texCoord") && (*t)["texCoord"].is_number_integer()) return (*t)["texCoord"].get<int>();
+  return info.contains("texCoord") && info["texCoord"].is_number_integer() ? info["texCoord"].get<int>() : 0;
+}
+
+// A texture info's UV set numbers, the input's, as the output numbers them.
+void renumber_tex_coords(json& info, const std::function<int(int)>& uv) {
+  const int own = info.contains("texCoord") && info["texCoord"].is_number_integer() ? info["texCoord"].get<int>() : 0;
+  if (info.contains("texCoord") || uv(own) != own) info["texCoord"] = uv(own);
+  if (json* t = texture_transform(info); t && t->contains("texCoord") && (*t)["texCoord"].is_number_integer())
+    (*t)["texCoord"] = uv((*t)["texCoord"].get<int>());
+}
+
+bool is_texture_info(const std::string& key, const json& j) {
+  return key.size() > 7 && key.compare(key.size() - 7, 7, "Texture") == 0 && j.is_object() && j.contains("index") &&
+         j["index"].is_number_integer();
+}
+
 // Renumbers every texture reference of a material object (as the importer names them: every
-// "...Texture" object with an "index", extras excepted).
-void renumber(json& node, const std::function<int(int)>& global) {
+// "...Texture" object with an "index", extras excepted) and the UV sets they read.
+void renumber(json& node, const std::function<int(int)>& global, const std::function<int(int)>& uv) {
   if (node.is_array())
-    for (json& e : node) renumber(e, global);
+    for (json& e : node) renumber(e, global, uv);
   if (!node.is_object()) return;
   for (auto it = node.begin(); it != node.end(); ++it) {
     if (it.key() == "extras") continue;
-    const std::string& k = it.key();
-    if (k.size() > 7 && k.compare(k.size() - 7, 7, "Texture") == 0 && it->is_object() && it->contains("index") &&
-        (*it)["index"].is_number_integer())
+    if (is_texture_info(it.key(), *it)) {
       (*it)["index"] = global((*it)["index"].get<int>());
-    renumber(*it, global);
+      renumber_tex_coords(*it, uv);
+    }
+    renumber(*it, global, uv);
   }
 }
 
 class Writer {
 public:
-  Writer(BufferWriter& buf, tinygltf::Model& model) : buf_(buf), model_(model) {}
+  Writer(const std::vector<int>& uv_sets, BufferWriter& buf, tinygltf::Model& model)
+      : uv_sets_(uv_sets), buf_(buf), model_(model) {}
 
   int image(const std::shared_ptr<const Image>& shared) {
     if (auto it = by_pointer_.find(shared.get()); it != by_pointer_.end()) return it->second;
@@ -149,11 +181,14 @@ public:
     }
     json g = json::parse(m.gltf);
     std::vector<int> global(m.textures.size(), -2);
-    renumber(g, [&](int local) {
-      if (local < 0 || size_t(local) >= m.textures.size()) return -1;
-      if (global[local] == -2) global[local] = texture(m.textures[local]);
-      return global[local];
-    });
+    renumber(
+        g,
+        [&](int local) {
+          if (local < 0 || size_t(local) >= m.textures.size()) return -1;
+          if (global[local] == -2) global[local] = texture(m.textures[local]);
+          return global[local];
+        },
+        [&](int set) { return written_uv_index(uv_sets_, set); });
     const json pbr = g.contains("pbrMetallicRoughness") ? g["pbrMetallicRoughness"] : json::object();
     auto& p = gm.pbrMetallicRoughness;
     p.metallicFactor = pbr.value("metallicFactor", 1.0);
@@ -196,6 +231,7 @@ private:
     if (std::find(list.begin(), list.end(), e) == list.end()) list.push_back(e);
   }
 
+  const std::vector<int>& uv_sets_;
   BufferWriter& buf_;
   tinygltf::Model& model_;
   std::unordered_map<size_t, std::vector<int>> images_;  // hash of the bytes -> images
@@ -206,9 +242,28 @@ private:
 
 }  // namespace
 
-void write_materials(const std::vector<Material>& mats, BufferWriter& buf, tinygltf::Model& model) {
-  Writer w(buf, model);
+void write_materials(const std::vector<Material>& mats, const std::vector<int>& uv_sets, BufferWriter& buf,
+                     tinygltf::Model& model) {
+  Writer w(uv_sets, buf, model);
   for (const Material& m : mats) w.material(m);
+}
+
+int tangent_uv_set(const Material& m) {
+  if (!needs_tangent_space(m)) return -1;
+  json g = json::parse(m.gltf, nullptr, false);
+  if (g.is_discarded()) return -1;
+  if (is_texture_info("normalTexture", g.value("normalTexture", json()))) return tex_coord(g["normalTexture"]);
+  if (!g.contains("extensions") || !g["extensions"].is_object()) return 0;
+  for (auto& [name, ext] : g["extensions"].items()) {
+    if (!ext.is_object()) continue;
+    for (auto& [key, info] : ext.items())
+      if (key.size() > 13 && key.compare(key.size() - 13, 13, "NormalTexture") == 0 && is_texture_info(key, info))
+        return tex_coord(info);
+  }
+  const json& aniso = g["extensions"].value("KHR_materials_anisotropy", json());
+  if (aniso.is_object() && is_texture_info("anisotropyTexture", aniso.value("anisotropyTexture", json())))
+    return tex_coord(aniso["anisotropyTexture"]);
+  return 0;
 }
 
 }  // namespace OpenMeshSkinned::detail

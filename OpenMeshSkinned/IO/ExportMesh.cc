@@ -1,9 +1,11 @@
 #include "OpenMeshSkinned/IO/ExportParts.hh"
 
 #include "OpenMeshSkinned/IO/ExportGltf.hh"
+#include "OpenMeshSkinned/IO/ExportMaterials.hh"
 #include "OpenMeshSkinned/IO/IOError.hh"
 #include "OpenMeshSkinned/Mesh/CornerAttributes.hh"
 #include "OpenMeshSkinned/Mesh/Seams.hh"
+#include "OpenMeshSkinned/Mesh/Tangents.hh"
 #include "OpenMeshSkinned/Skin/Morph.hh"
 #include "OpenMeshSkinned/Skin/SkinProperties.hh"
 
@@ -16,17 +18,20 @@ namespace OpenMeshSkinned::detail {
 
 namespace {
 
-// One glTF vertex: an OpenMesh vertex with one wedge's normal, UV and further sets (CornerAttributes.hh).
+// One glTF vertex: an OpenMesh vertex with one wedge's normal, UV, further sets (CornerAttributes.hh) and
+// tangent (zero in primitives without one).
 struct Corner {
   int vertex;
   std::array<float, 3> n;
   std::array<float, 2> uv;
   std::vector<float> sets;  // each carried set's components, in corner_channels() order
+  std::array<float, 4> tangent = {0, 0, 0, 0};
   bool operator<(const Corner& o) const {
     if (vertex != o.vertex) return vertex < o.vertex;
     if (n != o.n) return n < o.n;
     if (uv != o.uv) return uv < o.uv;
-    return sets < o.sets;
+    if (sets != o.sets) return sets < o.sets;
+    return tangent < o.tangent;
   }
 };
 
@@ -114,7 +119,62 @@ Eigen::Vector3d corner_normal(const SkinnedMesh& mesh, SkinnedMesh::HalfedgeHand
   return rlen > 0.0 && std::isfinite(rlen) ? Eigen::Vector3d(ref / rlen) : Eigen::Vector3d(0.0, 0.0, 1.0);
 }
 
+// The normal map's UVs of a primitive's corners (the input's UV set \p set, origin bottom-left as the mesh
+// keeps them), their written normals and positions, as the tangent generator takes them.
+std::vector<TangentCorner> tangent_corners(const SkinnedMesh& mesh,
+                                           const std::vector<SkinnedMesh::HalfedgeHandle>& hehs,
+                                           const std::vector<Eigen::Vector3d>& normals, int set) {
+  CornerChannel channel{CornerKind::TexCoord, set, OpenMesh::HPropHandleT<OpenMesh::Vec4f>()};
+  if (set > 0) mesh.get_property_handle(channel.handle, corner_property_name(CornerKind::TexCoord, set));
+  std::vector<TangentCorner> out;
+  for (size_t k = 0; k < hehs.size(); ++k) {
+    const auto vh = mesh.to_vertex_handle(hehs[k]);
+    const auto p = mesh.point(vh);
+    Eigen::Vector2d uv(0, 0);
+    if (set == 0) {
+      const auto t = mesh.texcoord2D(hehs[k]);
+      if (std::isfinite(t[0]) && std::isfinite(t[1])) uv = Eigen::Vector2d(t[0], t[1]);
+    } else {
+      const auto t = mesh.property(channel.handle, hehs[k]);
+      if (std::isfinite(t[0]) && std::isfinite(t[1])) uv = Eigen::Vector2d(t[0], t[1]);
+    }
+    // The normal as written (in float), so that corners written as one vertex share one tangent.
+    const Eigen::Vector3d n = normals[k].cast<float>().cast<double>();
+    out.push_back({vh.idx(), Eigen::Vector3d(p[0], p[1], p[2]), n, uv});
+  }
+  return out;
+}
+
 }  // namespace
+
+bool writes_first_uv_set(const SkinnedMesh& mesh) {
+  if (!mesh.has_halfedge_texcoords2D()) return false;
+  // TEXCOORD_1 needs a TEXCOORD_0, zero or not, and so does a textured material (a file whose textures
+  // have no UVs to read would otherwise become one the validator refuses).
+  for (const CornerChannel& c : corner_channels(mesh))
+    if (c.kind == CornerKind::TexCoord) return true;
+  for (const Material& m : materials(mesh))
+    if (!m.textures.empty()) return true;
+  for (auto heh : mesh.halfedges()) {
+    if (mesh.is_boundary(heh)) continue;  // no face, no corner: its UV is never set
+    const auto t = mesh.texcoord2D(heh);
+    if (std::isfinite(t[0]) && std::isfinite(t[1]) && t != SkinnedMesh::TexCoord2D(0, 0)) return true;
+  }
+  return false;
+}
+
+std::vector<int> written_uv_sets(const SkinnedMesh& mesh) {
+  std::vector<int> out(kMaxTexCoordSets, -1);
+  int next = 0;
+  if (writes_first_uv_set(mesh)) out[0] = next++;
+  for (const CornerChannel& c : corner_channels(mesh))
+    if (c.kind == CornerKind::TexCoord) out[c.set] = next++;
+  return out;
+}
+
+int written_uv_index(const std::vector<int>& written, int set) {
+  return set >= 0 && size_t(set) < written.size() && written[set] >= 0 ? written[set] : 0;
+}
 
 tinygltf::Mesh write_mesh(const SkinnedMesh& mesh, BufferWriter& buf, const std::string& path) {
   auto fail = [&path](const std::string& what) -> IOError { return IOError(path + ": " + what); };
@@ -136,23 +196,9 @@ tinygltf::Mesh write_mesh(const SkinnedMesh& mesh, BufferWriter& buf, const std:
     throw fail("a vertex has more than " + std::to_string(Influences::kCapacity) + " influences");
   const int slots = 4 * ((max_influences + 3) / 4);  // whole JOINTS_n/WEIGHTS_n sets of four
   const bool has_n = mesh.has_halfedge_normals();
-  const std::vector<CornerChannel> channels = corner_channels(mesh);
-  const bool has_uv = [&] {
-    if (!mesh.has_halfedge_texcoords2D()) return false;
-    // TEXCOORD_1 needs a TEXCOORD_0, zero or not, and so does a textured material (a file whose textures
-    // have no UVs to read would otherwise become one the validator refuses).
-    for (const CornerChannel& c : channels)
-      if (c.kind == CornerKind::TexCoord) return true;
-    for (const Material& m : materials(mesh))
-      if (!m.textures.empty()) return true;
-    for (auto heh : mesh.halfedges()) {
-      if (mesh.is_boundary(heh)) continue;  // no face, no corner: its UV is never set
-      const auto t = mesh.texcoord2D(heh);
-      if (std::isfinite(t[0]) && std::isfinite(t[1]) && t != SkinnedMesh::TexCoord2D(0, 0)) return true;
-    }
-    return false;
-  }();
+  const bool has_uv = writes_first_uv_set(mesh);
   const std::vector<Written> sets = written_sets(mesh, has_uv ? 1 : 0);
+  const std::vector<int> uv_sets = written_uv_sets(mesh);
 
   OpenMesh::VPropHandleT<float> h_error;
   const bool has_error = mesh.get_property_handle(h_error, kVertexErrorProperty);
@@ -172,55 +218,75 @@ tinygltf::Mesh write_mesh(const SkinnedMesh& mesh, BufferWriter& buf, const std:
     std::vector<float> weights;
     std::vector<uint32_t> indices;
     std::vector<double> mn(3, HUGE_VAL), mx(3, -HUGE_VAL);
-    for (auto fh : faces) {
+    // Every corner's normal first: a corner's tangent depends on its neighbours'.
+    std::vector<SkinnedMesh::HalfedgeHandle> hehs;
+    std::vector<Eigen::Vector3d> normals;
+    for (auto fh : faces)
       for (auto heh : mesh.fh_range(fh)) {
-        const auto vh = mesh.to_vertex_handle(heh);
-        Corner c{vh.idx(), {0, 0, 0}, {0, 0}, {}};
-        Eigen::Vector3d n = Eigen::Vector3d::Zero();
-        if (has_n) {
-          n = corner_normal(mesh, heh, rest_point);
-          c.n = {static_cast<float>(n[0]), static_cast<float>(n[1]), static_cast<float>(n[2])};
-        }
-        if (has_uv) {
-          auto t = mesh.texcoord2D(heh);
-          if (!std::isfinite(t[0]) || !std::isfinite(t[1])) t = SkinnedMesh::TexCoord2D(0, 0);
-          c.uv = {t[0], 1.0f - t[1]};  // glTF's UV origin is top-left, assimp's bottom-left
-        }
-        for (const Written& w : sets) append_set(w, mesh.property(w.channel.handle, heh), c.sets);
-        auto [it, inserted] = index_of.emplace(c, static_cast<uint32_t>(index_of.size()));
-        if (inserted) {
-          const auto p = mesh.point(vh);
-          if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
-            throw fail("vertex " + std::to_string(vh.idx()) + " has a non-finite position");
-          for (size_t t = 0; t < n_targets; ++t) {
-            const MorphDeltas& d = mesh.property(h_delta, vh);
-            const Eigen::Vector3f x = t < d.size() ? d[t] : Eigen::Vector3f::Zero();
-            deltas[t].insert(deltas[t].end(), {x.x(), x.y(), x.z()});
-            if (!has_n || !morph_targets(mesh)[t].normals) continue;
-            const auto morphed = [&](SkinnedMesh::VertexHandle w) {
-              const MorphDeltas& dw = mesh.property(h_delta, w);
-              const Eigen::Vector3f o = t < dw.size() ? dw[t] : Eigen::Vector3f::Zero();
-              return mesh.point(w) + SkinnedMesh::Point(o.x(), o.y(), o.z());
-            };
-            const Eigen::Vector3d dn = corner_normal(mesh, heh, morphed) - n;
-            normal_deltas[t].insert(normal_deltas[t].end(),
-                                    {static_cast<float>(dn[0]), static_cast<float>(dn[1]), static_cast<float>(dn[2])});
-          }
-          for (int k = 0; k < 3; ++k) {
-            const float f = static_cast<float>(p[k]);
-            pos.push_back(f);
-            mn[k] = std::min<double>(mn[k], f);
-            mx[k] = std::max<double>(mx[k], f);
-          }
-          if (has_error) err.push_back(mesh.property(h_error, vh));
-          nrm.insert(nrm.end(), c.n.begin(), c.n.end());
-          uv.insert(uv.end(), c.uv.begin(), c.uv.end());
-          for (size_t i = 0, at = 0; i < sets.size(); at += sets[i].components, ++i)
-            set_values[i].insert(set_values[i].end(), c.sets.begin() + at, c.sets.begin() + at + sets[i].components);
-          float_weights(mesh.property(h_inf, vh), slots, joints, weights);
-        }
-        indices.push_back(it->second);
+        hehs.push_back(heh);
+        normals.push_back(has_n ? corner_normal(mesh, heh, rest_point) : Eigen::Vector3d::Zero());
       }
+    // Tangents where the material's normal map (or what else needs them) reads a UV set that is written;
+    // glTF ignores tangents without normals.
+    std::vector<Eigen::Vector4d> tangents;
+    const int tangent_set = has_n && mat >= 0 ? tangent_uv_set(mats[mat]) : -1;
+    if (tangent_set >= 0) {
+      const int index = written_uv_index(uv_sets, tangent_set);
+      const auto source = std::find(uv_sets.begin(), uv_sets.end(), index);
+      if (source != uv_sets.end())
+        tangents = corner_tangents(tangent_corners(mesh, hehs, normals, int(source - uv_sets.begin())));
+    }
+    std::vector<float> tan;
+    for (size_t k = 0; k < hehs.size(); ++k) {
+      const auto heh = hehs[k];
+      const auto vh = mesh.to_vertex_handle(heh);
+      Corner c{vh.idx(), {0, 0, 0}, {0, 0}, {}};
+      const Eigen::Vector3d& n = normals[k];
+      if (has_n) c.n = {static_cast<float>(n[0]), static_cast<float>(n[1]), static_cast<float>(n[2])};
+      if (!tangents.empty()) {
+        const Eigen::Vector3f t = tangents[k].head<3>().cast<float>().normalized();  // unit in float too
+        c.tangent = {t[0], t[1], t[2], static_cast<float>(tangents[k][3])};
+      }
+      if (has_uv) {
+        auto t = mesh.texcoord2D(heh);
+        if (!std::isfinite(t[0]) || !std::isfinite(t[1])) t = SkinnedMesh::TexCoord2D(0, 0);
+        c.uv = {t[0], 1.0f - t[1]};  // glTF's UV origin is top-left, assimp's bottom-left
+      }
+      for (const Written& w : sets) append_set(w, mesh.property(w.channel.handle, heh), c.sets);
+      auto [it, inserted] = index_of.emplace(c, static_cast<uint32_t>(index_of.size()));
+      if (inserted) {
+        const auto p = mesh.point(vh);
+        if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+          throw fail("vertex " + std::to_string(vh.idx()) + " has a non-finite position");
+        for (size_t t = 0; t < n_targets; ++t) {
+          const MorphDeltas& d = mesh.property(h_delta, vh);
+          const Eigen::Vector3f x = t < d.size() ? d[t] : Eigen::Vector3f::Zero();
+          deltas[t].insert(deltas[t].end(), {x.x(), x.y(), x.z()});
+          if (!has_n || !morph_targets(mesh)[t].normals) continue;
+          const auto morphed = [&](SkinnedMesh::VertexHandle w) {
+            const MorphDeltas& dw = mesh.property(h_delta, w);
+            const Eigen::Vector3f o = t < dw.size() ? dw[t] : Eigen::Vector3f::Zero();
+            return mesh.point(w) + SkinnedMesh::Point(o.x(), o.y(), o.z());
+          };
+          const Eigen::Vector3d dn = corner_normal(mesh, heh, morphed) - n;
+          normal_deltas[t].insert(normal_deltas[t].end(),
+                                  {static_cast<float>(dn[0]), static_cast<float>(dn[1]), static_cast<float>(dn[2])});
+        }
+        for (int k = 0; k < 3; ++k) {
+          const float f = static_cast<float>(p[k]);
+          pos.push_back(f);
+          mn[k] = std::min<double>(mn[k], f);
+          mx[k] = std::max<double>(mx[k], f);
+        }
+        if (has_error) err.push_back(mesh.property(h_error, vh));
+        nrm.insert(nrm.end(), c.n.begin(), c.n.end());
+        if (!tangents.empty()) tan.insert(tan.end(), c.tangent.begin(), c.tangent.end());
+        uv.insert(uv.end(), c.uv.begin(), c.uv.end());
+        for (size_t i = 0, at = 0; i < sets.size(); at += sets[i].components, ++i)
+          set_values[i].insert(set_values[i].end(), c.sets.begin() + at, c.sets.begin() + at + sets[i].components);
+        float_weights(mesh.property(h_inf, vh), slots, joints, weights);
+      }
+      indices.push_back(it->second);
     }
     const size_t nv = index_of.size();
     tinygltf::Primitive prim;
@@ -231,6 +297,9 @@ tinygltf::Mesh write_mesh(const SkinnedMesh& mesh, BufferWriter& buf, const std:
     if (has_n)
       prim.attributes["NORMAL"] =
           buf.add(nrm, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, nv, TINYGLTF_TARGET_ARRAY_BUFFER);
+    if (!tangents.empty())
+      prim.attributes["TANGENT"] =
+          buf.add(tan, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4, nv, TINYGLTF_TARGET_ARRAY_BUFFER);
     if (has_uv)
       prim.attributes["TEXCOORD_0"] =
           buf.add(uv, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, nv, TINYGLTF_TARGET_ARRAY_BUFFER);

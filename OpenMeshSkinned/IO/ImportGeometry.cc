@@ -215,8 +215,8 @@ void GeometryBuilder::note_dropped(const aiMesh* am) {
   }
   if (am->HasTangentsAndBitangents() || target_tangents)
     warn(tangent_warning_,
-         "tangents (TANGENT, and morph targets' tangent offsets) are not written: glTF viewers compute MikkTSpace "
-         "tangents when TANGENT is absent");
+         "the input's tangents (TANGENT, and morph targets' tangent offsets) are not kept: the LODs get tangents "
+         "made from their own normals and UVs where a material needs them (a normal map), morph targets none");
   if (target_attributes)
     warn(target_warning_, "morph targets' colour and UV offsets are not kept (position and normal offsets are)");
   // Readers report a third component for some 2D sets (Collada): only a non-zero w is lost.

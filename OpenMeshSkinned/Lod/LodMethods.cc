@@ -261,6 +261,7 @@ std::vector<LodLevel> decimate_chain(const Mesh& input, const std::vector<Pose>&
     lod.target = targets[i];
     lod.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     if (h.bound.is_valid()) lod.deviation_bound = 100.0 * dec->module(h.bound).bound() / diagonal;
+    if (h.fold_over.is_valid()) lod.non_finite_weights = dec->module(h.fold_over).solver().stats().weights.non_finite;
     if (i + 1 == targets.size()) dec.reset();
     // Earlier levels are copies, with the deleted elements until garbage collection: the working mesh
     // cannot be renumbered under the solver.

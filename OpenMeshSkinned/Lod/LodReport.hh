@@ -25,6 +25,7 @@ struct LodReport {
   bool at_floor = false;              ///< stopped above the target where no collapse keeps the mesh manifold
   size_t pieces = 0;                  ///< then: its connected pieces
   size_t fold_fallbacks = 0;          ///< collapses made off their solved placement, which folded, to reach it
+  size_t non_finite_weights = 0;      ///< weight problems the solver refused as non-finite, this level and before
   double deviation_bound = -1.0;      ///< max_error: bound on the input's vertices' distance, % (< 0: none)
   bool evaluated = false;             ///< false when not evaluated
   double rms = 0.0, hausdorff = 0.0;  ///< held-out, % of the input's rest-pose bounding-box diagonal

@@ -38,6 +38,11 @@ void print_table(const std::string& title, const std::vector<OpenMeshSkinned::Lo
               << lod.max_influences << std::setw(14) << (lod.evaluated ? fmt(lod.rms, 4) : "-") << std::setw(15)
               << (lod.evaluated ? fmt(lod.hausdorff, 4) : "-") << std::setw(8) << lod.joints << std::setw(8) << lod.keys
               << "\n";
+  // Counted over the whole pass, so the last level has the run's count.
+  if (!chain.empty() && chain.back().report.non_finite_weights > 0)
+    std::cout << "  the weight solver refused " << chain.back().report.non_finite_weights
+              << " problems whose numbers overflowed (non-finite): those collapses were given infinite cost and "
+                 "not made\n";
   for (const auto& [lod, mesh] : chain) {
     if (lod.fold_fallbacks > 0)
       std::cout << "  ratio " << fmt(lod.ratio, 4) << ": " << lod.fold_fallbacks

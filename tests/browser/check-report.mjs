@@ -1,6 +1,6 @@
 // Opens a skinned-decimate report page in headless Chromium and checks what a user relies on: it loads with
 // no console error, every view shows something and is framed whole over the clip, the scrubber and the
-// wireframe switch change the picture.
+// wireframe switch change the picture, vertex colours and the heat map take turns.
 //   node tests/browser/check-report.mjs PAGE.html EXPECTED_VIEWS
 // Exit 0: all good; 1: a check failed (the reason on the last line); 77: no browser here (a skip).
 import { existsSync } from 'node:fs';
@@ -73,6 +73,28 @@ const before = await views();
 if (errors.length) await fail(`console error: ${errors[0]}`);
 if (expected && before.length !== Number(expected)) await fail(`${before.length} views, expected ${expected}`);
 for (const v of before) if (v.colours < 20) await fail(`view "${v.label}" is blank (${v.colours} colours)`);
+
+// Vertex colours: the heat map's in the error look, the LOD's own COLOR_0 (or none) as it looks.
+const colourMixUps = await page.evaluate(() => {
+  const bad = [];
+  for (const s of window.omsk.sections) {
+    const was = s.heat.checked;
+    for (const heat of [false, true]) {
+      s.heat.checked = heat;
+      s.applyLook();
+      for (const v of s.views)
+        for (const m of v.meshes) {
+          const want = heat && m.hasError ? m.heatColour : m.own;
+          if ((m.object.geometry.getAttribute('color') ?? null) !== (want ?? null))
+            bad.push(`view "${v.spec.label}" shows the wrong colours with the heat map ${heat ? 'on' : 'off'}`);
+        }
+    }
+    s.heat.checked = was;
+    s.applyLook();
+  }
+  return bad;
+});
+if (colourMixUps.length) await fail(colourMixUps[0]);
 
 // The scrubber: the page's own input element, as a user drags it.
 await page.evaluate(() => {

@@ -120,13 +120,19 @@ class Section {
         if (!o.isMesh) return;
         o.frustumCulled = false;  // skinned bounds do not follow the pose
         const err = o.geometry.getAttribute('_error');
+        // The heat map and the LOD's own COLOR_0 take turns as the 'color' attribute (applyLook).
+        const own = o.geometry.getAttribute('color');
+        let heatColour = null;
         if (err) {
           const c = new Float32Array(err.count * 3);
           for (let i = 0; i < err.count; ++i) c.set(colour(err.getX(i) / this.spec.error_scale), 3 * i);
-          o.geometry.setAttribute('color', new THREE.BufferAttribute(c, 3));
+          heatColour = new THREE.BufferAttribute(c, 3);
         }
         const mats = Array.isArray(o.material) ? o.material : [o.material];
-        meshes.push({ object: o, materials: mats, hasError: !!err, maps: mats.map((m) => m.map) });
+        meshes.push({
+          object: o, materials: mats, hasError: !!err, maps: mats.map((m) => m.map), own, heatColour,
+          ownVertexColors: mats.map((m) => m.vertexColors),
+        });
       });
       const mixer = new THREE.AnimationMixer(gltf.scene);
       this.views.push({ spec: v, scene, gltf, mixer, meshes, actions: new Map() });
@@ -203,7 +209,11 @@ class Section {
       for (const m of v.meshes)
         m.materials.forEach((mat, i) => {
           const heat = this.heat.checked && m.hasError;
-          mat.vertexColors = heat;
+          const geometry = m.object.geometry;
+          const colours = heat ? m.heatColour : m.own;
+          if (colours) geometry.setAttribute('color', colours);
+          else geometry.deleteAttribute('color');
+          mat.vertexColors = heat || (!!m.own && m.ownVertexColors[i]);
           mat.map = heat ? null : m.maps[i];
           mat.wireframe = this.wire.checked;
           mat.needsUpdate = true;
