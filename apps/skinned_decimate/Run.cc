@@ -190,14 +190,6 @@ void write_page(const Options& opt, const std::string& title, const std::vector<
   }
 }
 
-// What the command line alone can be wrong about, then what the library refuses (LodOptionsError: exit 2).
-void check_arguments(const Options& opt) {
-  if (opt.ratio_given && !(opt.ratio > 0.0 && opt.ratio <= 1.0)) throw UsageError("--ratio must be in (0, 1]");
-  if (!(opt.time_limit >= 0.0)) throw UsageError("--time-limit must be 0 (none) or more seconds");
-  if (!is_lod_method(opt.method)) throw UsageError("--method must be " + lod_method_names());
-  check_lod_options(lod_options(opt, opt.method));
-}
-
 // No INPUT: the papers' own characters, skinned next to static, files in one folder.
 int run_builtin(const Options& opt) {
   const std::string dir = opt.output.empty() ? "skinned-decimate-demo" : opt.output;
@@ -232,6 +224,14 @@ int run_builtin(const Options& opt) {
 }
 
 }  // namespace
+
+// What the command line alone can be wrong about, then what the library refuses (LodOptionsError: exit 2).
+void check_arguments(const Options& opt) {
+  if (opt.ratio_given && !(opt.ratio > 0.0 && opt.ratio <= 1.0)) throw UsageError("--ratio must be in (0, 1]");
+  if (!(opt.time_limit >= 0.0)) throw UsageError("--time-limit must be 0 (none) or more seconds");
+  if (!is_lod_method(opt.method)) throw UsageError("--method must be " + lod_method_names());
+  check_lod_options(lod_options(opt, opt.method));
+}
 
 const char* current_stage() { return stage.load(); }
 

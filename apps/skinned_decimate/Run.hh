@@ -5,6 +5,9 @@
 
 namespace skinned_decimate {
 
+/// Throws UsageError, or LodOptionsError (exit 2), when the options cannot be right for any input.
+void check_arguments(const Options& opt);
+
 /// Returns the exit code; throws UsageError (exit 2) or another exception (exit 1).
 int run(const Options& opt);
 
