@@ -2,6 +2,8 @@
 // skinned-decimate batch IN_DIR -o OUT_DIR: every asset of a folder, each in a process of its own
 // (OpenMeshSkinned/Lod/Batch.hh), with the options of a single run passed on to each.
 
+#include "Options.hh"
+
 #include <CLI/CLI.hpp>
 
 #include <string>
