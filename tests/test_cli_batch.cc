@@ -99,6 +99,12 @@ TEST(CliBatch, RunsALibraryReportsFailuresInOneLineAndResumes) {
     EXPECT_NE(page.find(input), std::string::npos) << input;
   EXPECT_NE(page.find("3 ok, 2 failed, 0 skipped"), std::string::npos);
   EXPECT_NE(page.find("<td class=\"reason\" colspan=\"2\">lib/broken.glb: "), std::string::npos) << page;
+  // As a browser shows it: a row per asset, the failures' reasons, every link leading to a file.
+  const auto shown = omsk_test::run_command(
+      "node", "'" + std::string(OMSK_SOURCE_DIR) + "/tests/browser/check-batch-index.mjs' out/index.html 3 2 0", d);
+  if (shown.code != 77) {
+    EXPECT_EQ(shown.code, 0) << shown.out;
+  }
 
   // Again: the three that succeeded are up to date, with their numbers; the failures run again.
   const auto lod_time = fs::last_write_time(d / "out/wuson.glb");
