@@ -1,4 +1,5 @@
 // skinned-decimate: LOD chains from skinned characters, judged in poses the decimater never saw.
+#include "BatchCommand.hh"
 #include "Options.hh"
 #include "Run.hh"
 
@@ -139,6 +140,7 @@ int main(int argc, char** argv) {
                "surface in all example poses: sparse least squares, three rounds)");
   app.add_flag("!--no-eval", opt.evaluate,
                "Skip measuring the error in held-out frames (batch use: the table shows triangles and time only)");
+  const BatchCommand batch(app);  // skinned-decimate batch IN_DIR -o OUT_DIR [the options above]
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -158,7 +160,7 @@ int main(int argc, char** argv) {
   std::sort(opt.lods.rbegin(), opt.lods.rend());
   // Messages quote names and bytes of the file: shown as one printable line each.
   try {
-    return run(opt);
+    return batch.parsed() ? batch.run(app) : run(opt);
   } catch (const UsageError& e) {
     std::cerr << "skinned-decimate: " << OpenMeshSkinned::printable_line(e.what(), 1000) << "\n";
     return 2;
