@@ -20,6 +20,7 @@ when a progress callable stops the work. The GIL is released while reading, deci
 from os import fspath as _fspath
 
 from . import _core
+from .batch import batch, tool_path
 from ._core import (
     Cancelled,
     Error,
@@ -50,12 +51,14 @@ __all__ = [
     "OptionsError",
     "ReadError",
     "WriteError",
+    "batch",
     "default_options",
     "evaluate",
     "load",
     "lod_methods",
     "make_lods",
     "save",
+    "tool_path",
 ]
 
 

@@ -46,5 +46,6 @@ const Exceptions& exceptions();
 void add_mesh(py::module_& m);
 void add_lods(py::module_& m);
 void add_evaluate(py::module_& m);
+void add_batch(py::module_& m);
 
 }  // namespace omsk_python

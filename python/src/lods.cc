@@ -139,7 +139,8 @@ void add_lods(py::module_& m) {
   py::class_<Chain>(m, "LodChain",
                     "What make_lods() returns: the LODs largest first (a sequence of Lod), the method that made "
                     "them, and the frames they were made and judged in.")
-      .def("__len__", [](const Chain& c) { return c.chain->levels.size(); })
+      .def(
+          "__len__", [](const Chain& c) { return c.chain->levels.size(); }, "The number of LODs.")
       .def(
           "__getitem__",
           [](const Chain& c, py::ssize_t i) {

@@ -76,4 +76,5 @@ PYBIND11_MODULE(_core, m) {
   omsk_python::add_mesh(m);
   omsk_python::add_lods(m);
   omsk_python::add_evaluate(m);
+  omsk_python::add_batch(m);
 }

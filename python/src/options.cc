@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <type_traits>
 
 namespace omsk_python {
 
@@ -97,6 +98,63 @@ py::dict options_dict(const LodOptions& o) {
   py::dict d;
   for (const Field& f : fields()) d[f.name] = f.get(o);
   return d;
+}
+
+namespace {
+
+// A number as the tool's command line reads it back to the same double (Python's shortest repr).
+std::string number(double v) { return py::repr(py::float_(v)); }
+
+template <typename T>
+std::string joined(const std::vector<T>& values) {
+  std::string s;
+  for (const T& v : values) {
+    if (!s.empty()) s += ",";
+    if constexpr (std::is_floating_point_v<T>)
+      s += number(v);
+    else
+      s += std::to_string(v);
+  }
+  return s;
+}
+
+}  // namespace
+
+std::vector<std::string> tool_arguments(const LodOptions& o) {
+  const LodOptions d;
+  if (o.per_vertex_error)
+    throw py::type_error("per_vertex_error is not an option of the tool's runs (html=True writes each page with it)");
+  if (o.faces.size() > 1)
+    throw OpenMeshSkinned::LodOptionsError("the tool makes a chain from ratios: faces takes one count in a batch");
+  std::vector<std::string> a;
+  const auto flag = [&a](bool on, const char* name) {
+    if (on) a.push_back(name);
+  };
+  const auto value = [&a](bool on, const char* name, const std::string& v) {
+    if (on) a.insert(a.end(), {name, v});
+  };
+  value(!o.method.empty(), "--method", o.method);
+  value(o.faces.empty() && o.ratios != d.ratios, "--lods", joined(o.ratios));
+  value(!o.faces.empty(), "--faces", o.faces.empty() ? "" : std::to_string(o.faces[0]));
+  value(o.max_influences != d.max_influences, "--max-influences", std::to_string(o.max_influences));
+  value(o.poses != d.poses, "--poses", std::to_string(o.poses));
+  value(o.pose_clip != d.pose_clip, "--pose-clip", o.pose_clip);
+  flag(!o.bind_pose, "--no-bind-pose");
+  value(o.pose_select_ga, "--pose-select", "ga");
+  value(o.threads != d.threads, "--threads", std::to_string(o.threads));
+  flag(!o.evaluate, "--no-eval");
+  flag(!o.refit, "--no-refit");
+  flag(o.strict_fold, "--strict-fold");
+  value(o.energy_error, "--error", "energy");
+  value(o.joint_guard != d.joint_guard, "--joint-guard", number(o.joint_guard));
+  value(o.max_error != d.max_error, "--max-error", number(o.max_error));
+  value(!o.max_joints.empty(), "--max-joints", joined(o.max_joints));
+  value(o.joint_energy != d.joint_energy, "--joint-energy", number(o.joint_energy));
+  value(o.anim_error != d.anim_error, "--anim-error", number(o.anim_error));
+  value(o.anim_frames, "--anim-method", "frames");
+  value(o.keyframes != d.keyframes, "--keyframes", std::to_string(o.keyframes));
+  value(o.max_memory_mb != d.max_memory_mb, "--max-memory", std::to_string(o.max_memory_mb));
+  return a;
 }
 
 std::string options_doc() {
