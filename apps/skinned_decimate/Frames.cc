@@ -12,7 +12,6 @@
 
 #include <nlohmann/json.hpp>
 
-#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -29,25 +28,7 @@ using namespace OpenMeshSkinned;
 // face and frame (72 bytes each).
 constexpr size_t kMaxSegmentFrames = 32;
 
-bool stores_frames(const std::string& path) { return stored_frame_count(path) > 1; }
-
 }  // namespace
-
-std::vector<std::string> frame_files(const std::string& input, bool sequences) {
-  if (stores_frames(input)) return {input};
-  // Only formats that hold one still mesh make sequences: a "hero_2.glb" beside "hero_1.glb" is two
-  // versions of a character, not two frames.
-  std::string ext = fs::path(input).extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  if (!sequences || (ext != ".obj" && ext != ".ply" && ext != ".stl" && ext != ".off")) return {};
-  std::vector<std::string> seq = numbered_sequence(input);
-  return seq.size() >= 2 ? seq : std::vector<std::string>{};
-}
-
-double frame_rate(const std::vector<std::string>& files, double fps) {
-  if (fps > 0.0) return fps;
-  return files.size() == 1 ? 10.0 : 24.0;
-}
 
 std::string segmentation_json_path(const std::string& glb) {
   const fs::path p(glb);

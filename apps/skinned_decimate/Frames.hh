@@ -4,6 +4,7 @@
 
 #include "Options.hh"
 
+#include <OpenMeshSkinned/IO/FrameFiles.hh>
 #include <OpenMeshSkinned/IO/OutputSet.hh>
 
 #include <string>
@@ -11,14 +12,8 @@
 
 namespace skinned_decimate {
 
-/// The files of the frame animation \p input stands for: itself when it stores frames (MD2/MD3/MDL), its
-/// numbered siblings when \p sequences, it is an OBJ, PLY, STL or OFF file and there are two or more;
-/// empty when it is one mesh.
-std::vector<std::string> frame_files(const std::string& input, bool sequences);
-
-/// The frame rate to play \p files at: \p fps when given, else 10 for Quake's formats (their animations
-/// run at the server's 10 Hz) and 24 for sequences.
-double frame_rate(const std::vector<std::string>& files, double fps);
+using OpenMeshSkinned::frame_files;  // the rule the Python package shares
+using OpenMeshSkinned::frame_rate;
 
 /** --segment OUT.glb: \p mesh cut into near-rigid parts (Lee et al.) over its frames (a frame animation's
  *  stored frames, or its clips sampled), written as OUT.glb with one coloured material per part (the
