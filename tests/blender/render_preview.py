@@ -12,6 +12,8 @@ import sys
 
 import bpy
 
+sys.dont_write_bytecode = True  # nothing written into the source tree
+
 here = os.path.dirname(os.path.abspath(__file__))
 sys.path[:0] = [here, os.path.join(here, "..", "..", "blender")]
 
@@ -23,7 +25,7 @@ def label(text, y, z, height):
     curve = bpy.data.curves.new("label", "FONT")
     curve.body = text
     curve.align_x = "CENTER"
-    curve.size = 0.07 * height
+    curve.size = 0.08 * height
     obj = bpy.data.objects.new("label", curve)
     obj.location = (0.0, y, z)
     obj.rotation_euler = (math.pi / 2, 0.0, math.pi / 2)  # facing +X, the camera
@@ -79,12 +81,12 @@ def main():
     scene.collection.objects.link(camera)
     camera.data.type = "ORTHO"
     span = step * (len(settings.report) + 1)
-    height = 1.45 * (top - floor)
+    height = 1.7 * (top - floor)
     camera.data.ortho_scale = span
     scene.render.resolution_x = 1600
     scene.render.resolution_y = int(1600 * height / span)
     camera.data.clip_end = 100.0 * (top - floor)
-    camera.location = (max(c.x for c in corners) + 10.0 * (top - floor), middle_y + span / 2 - step / 2, (top + floor) / 2 - 0.1 * (top - floor))
+    camera.location = (max(c.x for c in corners) + 10.0 * (top - floor), middle_y + span / 2 - step / 2, (top + floor) / 2 - 0.08 * (top - floor))
     camera.rotation_euler = (math.pi / 2, 0.0, math.pi / 2)
     scene.camera = camera
     scene.render.filepath = os.path.abspath(args["out"])

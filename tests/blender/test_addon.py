@@ -14,6 +14,8 @@ import traceback
 
 import bpy
 
+sys.dont_write_bytecode = True  # nothing written into the source tree
+
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
 import character  # noqa: E402
