@@ -182,10 +182,11 @@ def import_lod(context, path, armature, meshes, name, collection):
     skin_modifiers = [m for m in lod.modifiers if m.type == "ARMATURE"]
     if not skin_modifiers:
         skin_modifiers = [lod.modifiers.new("Armature", "ARMATURE")]
-    for modifier in skin_modifiers:
-        modifier.object = armature
+    for modifier in skin_modifiers[1:]:
+        lod.modifiers.remove(modifier)
+    skin_modifiers[0].object = armature
 
-    warnings = drop_foreign_groups(lod, armature)
+    warnings = reattach_groups(lod, armature, meshes, skin_modifiers[0])
     keep_materials = assign_original_materials(lod, path, meshes)
     rename_uv_maps(lod, meshes[0])
 
@@ -206,23 +207,44 @@ def import_lod(context, path, armature, meshes, name, collection):
     return lod, warnings
 
 
-def drop_foreign_groups(lod, armature):
-    """The exporter writes the armature's and the mesh's own nodes into the hierarchy the library reads as the
-    skeleton, so the LOD's skin lists them as joints too, with no weight; their vertex groups go. A group that
-    names no bone yet carries weight is kept, and said."""
+# The vertex group that masks the Armature modifier (inverted) where the LOD's skin weights the armature object.
+RIGID_GROUP = "rigid with armature"
+
+
+def reattach_groups(lod, armature, meshes, modifier):
+    """Makes the LOD's vertex groups say to Blender what its glTF skin says.
+
+    The exporter writes the armature object (and the mesh objects) as nodes above the bones, and the library reads
+    that hierarchy as the skeleton, so the LOD's skin lists them as joints. They mostly carry no weight, and their
+    groups go. With skeleton LoD they can: a removed bone's weight handed to the armature node means "moves
+    rigidly with the armature object". Blender's Armature modifier ignores a group that names no bone and spreads
+    the other weights over the whole vertex, so that weight goes into RIGID_GROUP instead, set as the modifier's
+    inverted vertex group: the modifier then moves the vertex by (1 - w) times the bones' normalised blend, which is
+    the bones' own weights' blend, and leaves w of it in place in the armature's frame: the glTF skin's result.
+    Returns warnings for weighted groups that name neither a bone nor those objects (kept as they are)."""
     bones = armature.data.bones
+    rigid_names = {armature.name} | {m.name for m in meshes}
     names = [g.name for g in lod.vertex_groups]
-    weighted = {names[g.group] for vertex in lod.data.vertices for g in vertex.groups if g.weight > 0.0}
-    warnings = []
+    rigid, foreign = {}, set()
+    for vertex in lod.data.vertices:
+        for g in vertex.groups:
+            name = names[g.group]
+            if name in bones or g.weight <= 0.0:
+                continue
+            if name in rigid_names:
+                rigid[vertex.index] = rigid.get(vertex.index, 0.0) + g.weight
+            else:
+                foreign.add(name)
     for group in list(lod.vertex_groups):
-        if group.name in bones:
-            continue
-        if group.name in weighted:
-            warnings.append(f"{lod.name}: vertex group '{group.name}' has weights but names no bone of "
-                            f"'{armature.name}'")
-            continue
-        lod.vertex_groups.remove(group)
-    return warnings
+        if group.name not in bones and group.name not in foreign:
+            lod.vertex_groups.remove(group)
+    if rigid:
+        group = lod.vertex_groups.new(name=RIGID_GROUP)
+        for index, weight in rigid.items():
+            group.add([index], min(weight, 1.0), "REPLACE")
+        modifier.vertex_group = group.name
+        modifier.invert_vertex_group = True
+    return [f"{lod.name}: vertex group '{n}' has weights but names no bone of '{armature.name}'" for n in sorted(foreign)]
 
 
 def assign_original_materials(lod, path, meshes):

@@ -76,6 +76,8 @@ class OMSK_OT_make_lods(bpy.types.Operator):
         folder = None
         if settings.write_gltf:
             folder = bpy.path.abspath(settings.output_dir)
+            if settings.output_dir.startswith("//") and not bpy.data.filepath:
+                folder = ""  # relative to a .blend file that has no place yet
             if not folder or not os.path.isdir(folder):
                 return self.refuse(settings, f"Folder: '{settings.output_dir}' is not a folder (save the .blend "
                                    "file first for a relative one)")
@@ -85,7 +87,11 @@ class OMSK_OT_make_lods(bpy.types.Operator):
         self.scratch = tempfile.mkdtemp(prefix="omsk-lod-")
         source = os.path.join(self.scratch, "character.glb")
         context.window_manager.progress_begin(0.0, 1.0)
-        exchange.export_character(context, armature, meshes, source)
+        try:
+            exchange.export_character(context, armature, meshes, source)
+        except RuntimeError as e:  # the exporter's own error, passed on by bpy.ops
+            self.cleanup(context)
+            return self.refuse(settings, "glTF export: " + str(e).strip().splitlines()[-1])
         if keywords["pose_clip"]:
             try:
                 keywords["pose_clip"] = clip_name(armature, keywords["pose_clip"], animation_names(source))
@@ -128,8 +134,12 @@ class OMSK_OT_make_lods(bpy.types.Operator):
             collection = exchange.lods_collection(context, self.character_name)
             settings.report.clear()
             for i, (path, report) in enumerate(zip(done.paths, done.reports), start=1):
-                lod, warnings = exchange.import_lod(context, path, armature, meshes,
-                                                    f"{self.character_name}_LOD{i}", collection)
+                try:
+                    lod, warnings = exchange.import_lod(context, path, armature, meshes,
+                                                        f"{self.character_name}_LOD{i}", collection)
+                except (exchange.CharacterError, RuntimeError) as e:
+                    self.refuse(settings, f"LOD{i}: " + str(e).strip().splitlines()[-1])
+                    return {"CANCELLED"}
                 for warning in warnings:
                     self.report({"WARNING"}, warning)
                 row = settings.report.add()
