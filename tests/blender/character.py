@@ -19,13 +19,15 @@ def wuson_glb(cli, models, scratch):
 
 
 def build(cli, models, scratch):
-    """Adds the character to the (empty) scene; returns (armature, mesh)."""
+    """Adds the character to the scene; returns (armature, mesh)."""
     from openmeshskinned_lod import exchange
 
+    before = set(bpy.data.objects)
     with exchange.numpy_bool_alias():
         bpy.ops.import_scene.gltf(filepath=wuson_glb(cli, models, scratch), merge_vertices=True)
-    armature = next(o for o in bpy.data.objects if o.type == "ARMATURE")
-    mesh = next(o for o in bpy.data.objects if o.type == "MESH")
+    imported = [o for o in bpy.data.objects if o not in before]
+    armature = next(o for o in imported if o.type == "ARMATURE")
+    mesh = next(o for o in imported if o.type == "MESH")
 
     # A second material on the upper half, so that the LODs' slots have more than one original to match.
     belly = bpy.data.materials.new("Belly")

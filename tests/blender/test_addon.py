@@ -5,7 +5,10 @@
 Installs the zip, builds the character (character.py), runs Object > Make Skinned LODs on it and checks the LODs as
 Blender sees them: in the collection, on the same armature, same vertex groups, materials and shape keys, capped
 influences, and, posed by Blender at the held-out frames, within 10 % of the command line's held-out error for the
-same settings. Then what the add-on must refuse, and a cancel. Exits non-zero on the first failure."""
+same settings. Then a second run (a triangle count, skeleton LoD, the glTF written and validated), what the add-on
+must refuse, and a cancel. Exits non-zero on the first failure. BLENDER_USER_SCRIPTS must name a scratch folder
+(ctest's entry sets it): the zip is installed there.
+The operator's modal path (invoke: the job on a thread polled by a timer, Esc) needs a window: test_modal.py."""
 
 import os
 import shutil
