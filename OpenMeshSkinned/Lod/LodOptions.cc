@@ -1,6 +1,7 @@
 #include "LodOptions.hh"
 
 #include "LodMethods.hh"
+#include "LodPoses.hh"
 
 #include <OpenMeshSkinned/Skin/FrameAnimation.hh>
 #include <OpenMeshSkinned/Skin/Influences.hh>
@@ -8,18 +9,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iomanip>
-#include <sstream>
 
 namespace OpenMeshSkinned {
 
 namespace {
-
-std::string number(double v) {
-  std::ostringstream os;
-  os << std::fixed << std::setprecision(4) << v;
-  return os.str();
-}
 
 // Largest first, the two lists in step.
 void sort_lod_targets(std::vector<double>& ratios, std::vector<size_t>& targets) {
@@ -41,7 +34,8 @@ void check_lod_options(const LodOptions& o) {
   if (o.faces.empty() && o.ratios.empty()) throw LodOptionsError("no LOD asked for: give --ratio, --faces or --lods");
   if (o.faces.empty())
     for (double r : o.ratios)
-      if (!(r > 0.0 && r <= 1.0)) throw LodOptionsError("--lods: every ratio must be in (0, 1], got " + number(r));
+      if (!(r > 0.0 && r <= 1.0))
+        throw LodOptionsError("--lods: every ratio must be in (0, 1], got " + fixed_number(r, 4));
   for (size_t f : o.faces)
     if (f == 0) throw LodOptionsError("--faces must be at least 1");
   if (o.max_influences < 1 || o.max_influences > Influences::kCapacity)

@@ -1,5 +1,7 @@
 #include "Report.hh"
 
+#include <OpenMeshSkinned/Lod/LodPoses.hh>
+
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -19,11 +21,7 @@ std::string error_cell(const json& v) { return v.is_number() ? fmt(v.get<double>
 
 }  // namespace
 
-std::string fmt(double v, int prec) {
-  std::ostringstream os;
-  os << std::fixed << std::setprecision(prec) << v;
-  return os.str();
-}
+std::string fmt(double v, int prec) { return OpenMeshSkinned::fixed_number(v, prec); }
 
 void print_table(const std::string& title, const std::vector<OpenMeshSkinned::LodLevel>& chain, bool have_heldout) {
   std::cout << title << "\n"
