@@ -133,6 +133,33 @@ TEST(Import, RealCharactersCarrySkeletonSkinAndClips) {
   }
 }
 
+TEST(Import, ReadingOurOwnGlbKeepsItsSkeleton) {
+  // The writer puts the mesh's node beside the joints (and a root above several top joints); reading that
+  // back must not add them as joints: every LOD of a LOD, and every re-run, has the input's skeleton.
+  for (bool two_roots : {false, true}) {
+    SCOPED_TRACE(two_roots ? "two top-level joints" : "one root joint");
+    Mesh mesh = make_bending_cylinder(8, 8);
+    Skeleton& skel = skeleton(mesh);
+    if (two_roots) {
+      skel.joints[1].rest_local = skel.joints[0].rest_local * skel.joints[1].rest_local;
+      skel.joints[1].parent = -1;
+      clips(mesh).clear();
+    }
+    const auto out = scratch(two_roots ? "own_two_roots.glb" : "own_one_root.glb");
+    export_gltf(mesh, out.string());
+    Mesh back;
+    const auto rep = import_skinned(out.string(), back);
+    const Skeleton& sb = skeleton(back);
+    ASSERT_EQ(sb.size(), skel.size());
+    for (int j = 0; j < sb.size(); ++j) {
+      EXPECT_EQ(sb.joints[j].name, skel.joints[j].name);
+      EXPECT_EQ(sb.joints[j].parent, skel.joints[j].parent);
+      EXPECT_TRUE(sb.joints[j].rest_local.isApprox(skel.joints[j].rest_local, 1e-6));
+    }
+    EXPECT_EQ(rep.unweighted_vertices, 0u);
+  }
+}
+
 TEST(Import, AMeshUsedBeforeIsReplacedNotAppendedTo) {
   // Into the same mesh, in and out of process: what comes back is the second file alone.
   for (bool isolate : {false, true}) {

@@ -20,6 +20,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 
 namespace fs = std::filesystem;
 using omsk_spec::Soup;
@@ -135,6 +136,39 @@ TEST_P(RealCharacter, RatioOneIsLosslessAndValid) {
     EXPECT_NEAR(omsk_spec::duration(res, a), omsk_spec::duration(in, a), 1e-4);
   const double worst = worst_mismatch(in, [&](int a, double t) { return omsk_spec::pose(res, a, t); });
   EXPECT_LT(worst, 1e-5) << GetParam();
+}
+
+TEST_P(RealCharacter, SkeletonIsTheInputsJoints) {
+  // The input's own joints and only those (issue 29): every skin's joints, and the node of a mesh without a
+  // skin (its vertices move with it). Not the scene root above the bones, not the skinned mesh's node.
+  const std::string& file = characters().at(GetParam());
+  const tinygltf::Model in = omsk_spec::load(file);
+  // The reader names a node without a name by its place in the file.
+  auto name = [&](int n) { return in.nodes[n].name.empty() ? "nodes[" + std::to_string(n) + "]" : in.nodes[n].name; };
+  std::set<std::string> expected;
+  for (const auto& skin : in.skins)
+    for (int j : skin.joints) expected.insert(name(j));
+  for (size_t n = 0; n < in.nodes.size(); ++n)
+    if (in.nodes[n].mesh >= 0 && in.nodes[n].skin < 0) expected.insert(name(int(n)));
+  OpenMeshSkinned::SkinnedMesh mesh;
+  OpenMeshSkinned::import_skinned(file, mesh);
+  std::set<std::string> got;
+  for (const auto& j : OpenMeshSkinned::skeleton(mesh).joints) got.insert(j.name);
+  EXPECT_EQ(got, expected) << GetParam();
+  // Each joint's parent is its nearest ancestor node that is a joint.
+  std::map<int, int> parent_node;
+  for (size_t n = 0; n < in.nodes.size(); ++n)
+    for (int c : in.nodes[n].children) parent_node[c] = int(n);
+  std::map<std::string, int> node_of;
+  for (size_t n = 0; n < in.nodes.size(); ++n) node_of[name(int(n))] = int(n);
+  const auto& skel = OpenMeshSkinned::skeleton(mesh);
+  for (const auto& j : skel.joints) {
+    int p = node_of.at(j.name);
+    do p = parent_node.count(p) ? parent_node[p] : -1;
+    while (p >= 0 && !expected.count(name(p)));
+    EXPECT_EQ(j.parent < 0 ? std::string() : skel.joints[j.parent].name, p < 0 ? std::string() : name(p))
+        << GetParam() << ": " << j.name;
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Messy, RealCharacter,

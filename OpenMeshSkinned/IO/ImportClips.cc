@@ -8,6 +8,18 @@ namespace OpenMeshSkinned::detail {
 
 namespace {
 
+// Keys relative to a node's parent node made relative to its parent joint, through the similarity
+// \p folded of the ancestors between them (JointMap): folded * T R S = T' R' S' exactly.
+void fold_keys(Channel& ch, const Eigen::Matrix4d& folded) {
+  Eigen::Vector3d t, s;
+  Eigen::Quaterniond r;
+  decompose_trs(folded, t, r, s);
+  const double scale = s.x();  // a similarity: s is uniform
+  for (Eigen::Vector3d& v : ch.translations) v = (folded * v.homogeneous()).head<3>();
+  for (Eigen::Quaterniond& q : ch.rotations) q = r * q;
+  for (Eigen::Vector3d& v : ch.scales) v *= scale;
+}
+
 // One node's keys, in seconds; the clip lasts at least until its last key.
 Channel read_channel(const aiNodeAnim* na, double tps, double& duration) {
   Channel ch;
@@ -48,6 +60,7 @@ void read_clips(const aiScene* scene, const SceneNodes& sn, const JointMap& join
       auto it = sn.by_name.find(na->mNodeName.C_Str());
       if (it == sn.by_name.end() || joints.joints_of_node(it->second).empty()) continue;  // moves nothing we keep
       Channel ch = read_channel(na, tps, clip.duration);
+      if (!joints.folded_above(it->second).isIdentity(0.0)) fold_keys(ch, joints.folded_above(it->second));
       for (int j : joints.joints_of_node(it->second)) {  // twins move with their node
         ch.joint = j;
         clip.channels.push_back(ch);

@@ -148,7 +148,9 @@ void GeometryBuilder::add(const aiScene* scene, const SceneNodes& sn, JointMap& 
   rep_.source_vertices += am->mNumVertices;
   const Eigen::Matrix4d B = bind_space(am, sn, joints, in.node);
   const Eigen::Matrix3d normal_matrix = B.topLeftCorner<3, 3>().inverse().transpose();
-  const int node_joint = joints.joint_for(in.node, sn.global[in.node].inverse());
+  // The node is a joint only where the mesh needs it (JointMap): without a skin, or for unweighted vertices.
+  const int node_joint =
+      joints.joints_of_node(in.node).empty() ? -1 : joints.joint_for(in.node, sn.global[in.node].inverse());
   const std::vector<Influences> inf = read_weights(am, joints, B.inverse(), node_joint);
 
   for (unsigned t = 0; t < am->mNumAnimMeshes && n_targets_ > 0; ++t)

@@ -40,16 +40,23 @@ struct MeshInstance {
 };
 std::vector<MeshInstance> mesh_instances(const aiScene* scene, const SceneNodes& sn);
 
-/** The joints of the imported skeleton: every bone, every node carrying a mesh, and their ancestors
- *  (ancestors move the bones when animated, and a rotated, scaled scene root is part of every pose), each
- *  bound where its node rests. A skin whose inverse bind for a node differs from the one already in use
- *  (several skins bound in different poses or spaces) gets a twin joint: same parent, same transform, same
- *  animation, own bind. */
+/** The joints of the imported skeleton: the input's own joints, each bound where its node rests. Those
+ *  are every bone of a skin, the node of every mesh that needs one to move with (a mesh without a skin,
+ *  or a skinned mesh with vertices no bone weights), and an ancestor of these only when it moves them in
+ *  a way their own transforms cannot carry: when it is animated, or when its transform is not a
+ *  similarity (shear or a mirror cannot be folded into a child's translation, rotation and scale). Every
+ *  other ancestor (the armature node Blender writes above the bones, the reader's root above several top
+ *  nodes, a rotated and scaled scene root, the skinned mesh's own node) is folded into the rest transform
+ *  and the keys of the joints below it: no engine sharing one skeleton across LODs knows such joints.
+ *  A skin whose inverse bind for a node differs from the one already in use (several skins bound in
+ *  different poses or spaces) gets a twin joint: same parent, same transform, same animation, own bind. */
 class JointMap {
 public:
   /// Fills \p skel; \p path names the file in errors.
   JointMap(const aiScene* scene, const SceneNodes& sn, const std::vector<MeshInstance>& instances, Skeleton& skel,
            const std::string& path);
+  JointMap(const JointMap&) = delete;
+  JointMap& operator=(const JointMap&) = delete;
 
   bool any_bones() const { return any_bones_; }
   /// The node of a bone (an IOError when the scene has none of that name).
@@ -57,6 +64,9 @@ public:
   /// The joint of \p node bound with inverse bind \p ib: the node's own joint, or a twin.
   int joint_for(int node, const Eigen::Matrix4d& ib);
   const std::vector<int>& joints_of_node(int node) const { return joints_of_node_[node]; }
+  /// The similarity of the ancestors folded into \p node's joint (identity when none): the node's clip keys,
+  /// relative to its parent node, become relative to its parent joint through it.
+  const Eigen::Matrix4d& folded_above(int node) const { return folded_above_[node]; }
   size_t twins() const { return twins_; }
 
 private:
@@ -64,6 +74,7 @@ private:
   Skeleton& skel_;
   std::string path_;
   std::vector<std::vector<int>> joints_of_node_;
+  std::vector<Eigen::Matrix4d> folded_above_;
   std::vector<char> claimed_;
   bool any_bones_ = false;
   size_t twins_ = 0;
