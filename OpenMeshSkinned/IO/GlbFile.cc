@@ -4,6 +4,8 @@
 #include <cctype>
 #include <cstdint>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 
 namespace OpenMeshSkinned::detail {
 namespace {
@@ -30,6 +32,26 @@ bool split_glb(const std::string& data, GlbChunks& out) {
     at += 8 + le32(data, at);
   }
   out.rest = data.substr(std::min(at, data.size()));
+  return true;
+}
+
+bool read_file_bytes(const std::filesystem::path& path, std::string& out) {
+  out.clear();
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) return false;
+  const std::streamoff size = in.tellg();
+  if (size < 0) {  // not seekable: read it as a stream
+    in.clear();
+    in.seekg(0);
+    out.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    return true;
+  }
+  out.resize(size_t(size));
+  in.seekg(0);
+  if (size > 0 && !in.read(out.data(), size)) {
+    out.clear();
+    return false;
+  }
   return true;
 }
 

@@ -587,9 +587,8 @@ const std::string& GltfBytes::buffer(size_t index) {
       throw IOError(shown_as_ + ": buffer " + std::to_string(index) + " has a data URI that is not base64");
     loaded_[index] = cereal::base64::decode(uri.substr(comma + 1));
   } else {
-    std::ifstream in(dir_ / percent_decoded(uri), std::ios::binary);
-    if (!in) throw IOError(shown_as_ + ": buffer " + std::to_string(index) + " (\"" + uri + "\") cannot be read");
-    loaded_[index].assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    if (!read_file_bytes(dir_ / percent_decoded(uri), loaded_[index]))
+      throw IOError(shown_as_ + ": buffer " + std::to_string(index) + " (\"" + uri + "\") cannot be read");
   }
   is_loaded_[index] = true;
   return loaded_[index];

@@ -24,8 +24,8 @@ bool load_document(const std::string& path, json& doc, std::vector<unsigned char
   std::string ext = fs::path(path).extension().string();
   for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
   if (ext != ".gltf" && ext != ".glb") return false;
-  std::ifstream in(path, std::ios::binary);
-  const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string data;
+  detail::read_file_bytes(path, data);
   if (data.size() >= 20 && data.compare(0, 4, "glTF") == 0) {
     detail::GlbChunks chunks;
     if (!detail::split_glb(data, chunks)) return false;

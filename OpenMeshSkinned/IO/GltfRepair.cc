@@ -80,8 +80,8 @@ RepairedGltf::RepairedGltf(const std::string& path) {
   const std::string ext = fs::path(path).extension().string();
   const bool glb = ext == ".glb" || ext == ".GLB";
   if (!glb && ext != ".gltf" && ext != ".GLTF") return;
-  std::ifstream in(path, std::ios::binary);
-  const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string data;
+  detail::read_file_bytes(path, data);  // unreadable: empty, and the reader says why
 
   json doc;
   detail::GlbChunks chunks;

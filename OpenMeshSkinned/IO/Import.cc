@@ -241,6 +241,7 @@ ImportReport detail::import_scene(const std::string& path, const std::string& re
     }
     mesh.reserve(nv + nv / 32 + 16, nf + nf / 2 + nf / 32 + 16, nf);
     GeometryBuilder geometry(mesh, rep.morph_targets, opt, rep, path);
+    geometry.reserve(nv);
     for (size_t ii = 0; ii < instances.size(); ++ii) geometry.add(scene, sn, joints, instances[ii], target_base[ii]);
   }
   rep.twin_joints = joints.twins();

@@ -150,6 +150,16 @@ void append_import(const SkinnedMesh& mesh, const ImportReport& report, std::str
   const auto h_fmat = face_material_handle(mesh);
   OpenMesh::VPropHandleT<MorphDeltas> h_delta;
   const bool morphs = morph_deltas_handle(mesh, h_delta);
+  // Sized up front: grown by doubling, each array is copied and its new pages faulted in again and again.
+  const size_t nv = mesh.n_vertices(), nf = mesh.n_faces(), kc = Influences::kCapacity;
+  f.points.reserve(3 * nv);
+  f.inf_joints.reserve(kc * nv);
+  f.inf_weights.reserve(kc * nv);
+  if (morphs) f.morph_deltas.reserve(nv);
+  f.face_material.reserve(nf);
+  f.face_vertices.reserve(3 * nf);
+  f.corner_normals.reserve(9 * nf);
+  f.corner_uvs.reserve(6 * nf);
   for (auto vh : mesh.vertices()) {
     const auto& p = mesh.point(vh);
     f.points.insert(f.points.end(), {p[0], p[1], p[2]});
@@ -166,6 +176,7 @@ void append_import(const SkinnedMesh& mesh, const ImportReport& report, std::str
     f.set_indices.push_back(c.set);
   }
   f.set_values.resize(sets.size());
+  for (auto& v : f.set_values) v.reserve(12 * nf);
   for (auto fh : mesh.faces()) {
     f.face_material.push_back(mesh.property(h_fmat, fh));
     for (auto heh : mesh.fh_range(fh)) {

@@ -23,6 +23,8 @@ public:
                   const std::string& path);
   ~GeometryBuilder();
 
+  /// Room in the welding table for \p vertices file vertices (all instances'): no rehash while adding.
+  void reserve(size_t vertices);
   /// Adds instance \p in, whose morph targets start at \p target_base.
   void add(const aiScene* scene, const SceneNodes& sn, JointMap& joints, const MeshInstance& in, size_t target_base);
 
