@@ -50,18 +50,19 @@ std::vector<std::string> lines(const std::string& s) {
   return out;
 }
 
-// The first animation of Testwuson: clip "Wuson_Run", its first channel moves the node "Wuson", whose one
-// translation key is "0;3;0.000000,0.000000,-0.000000;;;".
-const std::string kFirstPosKey = "0;3;0.000000,0.000000,-0.000000;;;";
+// The first animation of Testwuson: clip "Wuson_Run". Its first channel moves the node "Wuson", the skinned
+// mesh's own node, which is no joint (glTF's rule: it moves nothing); its second moves the root bone "Root",
+// whose first translation key is this one.
+const std::string kFirstRootPosKey = "0;3;0.000000,0.522834,0.009935;;,";
 
 }  // namespace
 
 TEST(CliBadNumbers, ANaNKeyIsOneLineNamingClipJointAndKey) {
-  const fs::path d = wuson_with("nan_key", kFirstPosKey, "0;3;NaN,0.000000,-0.000000;;;");
+  const fs::path d = wuson_with("nan_key", kFirstRootPosKey, "0;3;NaN,0.522834,0.009935;;,");
   const auto r = run(d, "in.x");
   EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_EQ(r.out,
-            "skinned-decimate: in.x: clip \"Wuson_Run\": joint \"Wuson\": translation key 0 has the non-finite "
+            "skinned-decimate: in.x: clip \"Wuson_Run\": joint \"Root\": translation key 0 has the non-finite "
             "value nan\n");
   EXPECT_FALSE(fs::exists(d / "out.glb"));
 }
