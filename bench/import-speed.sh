@@ -11,7 +11,7 @@ runs=${2:-5}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 build/bench/omsk-bench --write human "$work/human.glb"
-import_seconds() { grep -o '"import_seconds":[0-9.e+-]*' "$1" | cut -d: -f2; }
+import_seconds() { /usr/bin/python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["import_seconds"])' "$1"; }
 # One run of $1 on the human: "isolated_import no_isolate_import".
 one() {
   "$1" "$work/human.glb" -o "$work/o.glb" --ratio 1 --no-eval --quiet --report "$work/a.json" >/dev/null
