@@ -1,0 +1,159 @@
+// The image judge's metrics, on two renders of one view (RGBA, 8-bit sRGB as the canvas shows them) and the
+// two coverage masks (1 where the character covers the pixel). Pure functions, no browser: the page bundles
+// this file and metrics.test.mjs checks it under Node.
+//
+// Regions: the interior is where both masks cover the whole 3x3 neighbourhood (both show the character, away
+// from its outline); the silhouette is every other pixel within one pixel of either mask (the outline band of
+// both, and where one shows the character and the other the background). Elsewhere both show the background,
+// identically, and nothing is counted.
+
+export const BACKGROUND = 0, INTERIOR = 1, SILHOUETTE = 2;
+
+// 8-bit sRGB -> linear (IEC 61966-2-1), as a table.
+export const SRGB_TO_LINEAR = new Float64Array(256).map((_, i) => {
+  const c = i / 255;
+  return c <= 0.04045 ? c / 12.92 : ((c + 0.055) / 1.055) ** 2.4;
+});
+
+/** Labels every pixel BACKGROUND, INTERIOR or SILHOUETTE from the two masks (Uint8Array, w*h, 0/1). */
+export function regions(maskA, maskB, w, h) {
+  const labels = new Uint8Array(w * h);
+  for (let y = 0; y < h; ++y)
+    for (let x = 0; x < w; ++x) {
+      let both = 0, either = 0, n = 0;
+      for (let dy = -1; dy <= 1; ++dy)
+        for (let dx = -1; dx <= 1; ++dx) {
+          const u = x + dx, v = y + dy;
+          ++n;
+          if (u < 0 || v < 0 || u >= w || v >= h) continue;  // outside the image counts as uncovered
+          const a = maskA[v * w + u], b = maskB[v * w + u];
+          both += a & b;
+          either |= a | b;
+        }
+      labels[y * w + x] = both === n ? INTERIOR : either ? SILHOUETTE : BACKGROUND;
+    }
+  return labels;
+}
+
+/** Per region: the sum of squared differences of linear RGB and the number of channel samples summed. */
+export function squaredErrors(rgbaA, rgbaB, labels) {
+  const out = { [INTERIOR]: { sse: 0, n: 0 }, [SILHOUETTE]: { sse: 0, n: 0 } };
+  for (let p = 0; p < labels.length; ++p) {
+    const r = out[labels[p]];
+    if (!r) continue;
+    for (let k = 0; k < 3; ++k) {
+      const d = SRGB_TO_LINEAR[rgbaA[4 * p + k]] - SRGB_TO_LINEAR[rgbaB[4 * p + k]];
+      r.sse += d * d;
+    }
+    r.n += 3;
+  }
+  return out;
+}
+
+/** PSNR in dB for values in [0, 1] from a sum of squared errors over n samples: Infinity when equal, null when
+ *  there is nothing to compare. */
+export function psnr(sse, n) {
+  if (n === 0) return null;
+  return sse === 0 ? Infinity : 10 * Math.log10(n / sse);
+}
+
+/** Luma of the display values (Rec. 709 weights on the sRGB-encoded channels, in [0, 1]): SSIM's input. */
+export function luma(rgba, count) {
+  const y = new Float64Array(count);
+  for (let p = 0; p < count; ++p) y[p] = (0.2126 * rgba[4 * p] + 0.7152 * rgba[4 * p + 1] + 0.0722 * rgba[4 * p + 2]) / 255;
+  return y;
+}
+
+// Wang et al. 2004: an 11x11 Gaussian window of sigma 1.5, C1 = (0.01 L)^2, C2 = (0.03 L)^2, L = 1.
+export const SSIM_RADIUS = 5, SSIM_SIGMA = 1.5, SSIM_C1 = 0.01 ** 2, SSIM_C2 = 0.03 ** 2;
+export const GAUSSIAN = (() => {
+  const g = [];
+  for (let i = -SSIM_RADIUS; i <= SSIM_RADIUS; ++i) g.push(Math.exp(-(i * i) / (2 * SSIM_SIGMA * SSIM_SIGMA)));
+  return g;
+})();
+
+// Separable Gaussian blur; the window is cut at the image's border and renormalised over what is left.
+function blur(src, w, h) {
+  const tmp = new Float64Array(w * h), out = new Float64Array(w * h);
+  const pass = (from, to, len, stride, lines, lineStride) => {
+    for (let l = 0; l < lines; ++l)
+      for (let i = 0; i < len; ++i) {
+        let s = 0, ws = 0;
+        for (let k = -SSIM_RADIUS; k <= SSIM_RADIUS; ++k) {
+          const j = i + k;
+          if (j < 0 || j >= len) continue;
+          const g = GAUSSIAN[k + SSIM_RADIUS];
+          s += g * from[l * lineStride + j * stride];
+          ws += g;
+        }
+        to[l * lineStride + i * stride] = s / ws;
+      }
+  };
+  pass(src, tmp, w, 1, h, w);
+  pass(tmp, out, h, w, w, 1);
+  return out;
+}
+
+/** The SSIM map of two luma images (Float64Array, w*h). */
+export function ssimMap(a, b, w, h) {
+  const n = w * h;
+  const aa = new Float64Array(n), bb = new Float64Array(n), ab = new Float64Array(n);
+  for (let p = 0; p < n; ++p) {
+    aa[p] = a[p] * a[p];
+    bb[p] = b[p] * b[p];
+    ab[p] = a[p] * b[p];
+  }
+  const [ma, mb, saa, sbb, sab] = [a, b, aa, bb, ab].map((x) => blur(x, w, h));
+  const map = new Float64Array(n);
+  for (let p = 0; p < n; ++p) {
+    const va = saa[p] - ma[p] * ma[p], vb = sbb[p] - mb[p] * mb[p], cov = sab[p] - ma[p] * mb[p];
+    map[p] = ((2 * ma[p] * mb[p] + SSIM_C1) * (2 * cov + SSIM_C2)) /
+      ((ma[p] * ma[p] + mb[p] * mb[p] + SSIM_C1) * (va + vb + SSIM_C2));
+  }
+  return map;
+}
+
+/** Per region: the sum of the SSIM map and the number of pixels summed. */
+export function ssimSums(map, labels) {
+  const out = { [INTERIOR]: { sum: 0, n: 0 }, [SILHOUETTE]: { sum: 0, n: 0 } };
+  for (let p = 0; p < labels.length; ++p) {
+    const r = out[labels[p]];
+    if (!r) continue;
+    r.sum += map[p];
+    ++r.n;
+  }
+  return out;
+}
+
+/** Everything the judge pools for one view: {interior, silhouette} each {sse, samples, ssim_sum, pixels},
+ *  and the two masks' pixel counts. */
+export function compareView(rgbaA, maskA, rgbaB, maskB, w, h) {
+  const labels = regions(maskA, maskB, w, h);
+  const se = squaredErrors(rgbaA, rgbaB, labels);
+  const ss = ssimSums(ssimMap(luma(rgbaA, w * h), luma(rgbaB, w * h), w, h), labels);
+  const region = (r) => ({ sse: se[r].sse, samples: se[r].n, ssim_sum: ss[r].sum, pixels: ss[r].n });
+  let coveredA = 0, coveredB = 0;
+  for (let p = 0; p < w * h; ++p) {
+    coveredA += maskA[p];
+    coveredB += maskB[p];
+  }
+  return { interior: region(INTERIOR), silhouette: region(SILHOUETTE), covered_a: coveredA, covered_b: coveredB };
+}
+
+/** Pools views' compareView results: PSNR from the summed squared errors, SSIM as the mean over all pixels. */
+export function pool(views) {
+  const total = (key) => {
+    const s = { sse: 0, samples: 0, ssim_sum: 0, pixels: 0 };
+    for (const v of views) for (const k of Object.keys(s)) s[k] += v[key][k];
+    return s;
+  };
+  const summary = (s) => ({
+    psnr: psnr(s.sse, s.samples),
+    ssim: s.pixels ? s.ssim_sum / s.pixels : null,
+    mse: s.samples ? s.sse / s.samples : null,
+    pixels: s.pixels,
+  });
+  const i = total('interior'), s = total('silhouette');
+  const all = { sse: i.sse + s.sse, samples: i.samples + s.samples, ssim_sum: i.ssim_sum + s.ssim_sum, pixels: i.pixels + s.pixels };
+  return { interior: summary(i), silhouette: summary(s), all: summary(all), views: views.length };
+}
