@@ -15,23 +15,34 @@ export const SRGB_TO_LINEAR = new Float64Array(256).map((_, i) => {
   return c <= 0.04045 ? c / 12.92 : ((c + 0.055) / 1.055) ** 2.4;
 });
 
+// A 3x3 minimum (erode) or maximum (dilate) of a 0/1 image, in two 1-D passes; outside the image counts as 0.
+function filter3(src, w, h, dilate) {
+  const tmp = new Uint8Array(w * h), out = new Uint8Array(w * h);
+  const pass = (from, to, len, stride, lines, lineStride) => {
+    for (let l = 0; l < lines; ++l) {
+      const o = l * lineStride;
+      for (let i = 0; i < len; ++i) {
+        const m = from[o + i * stride], lo = i > 0 ? from[o + (i - 1) * stride] : 0;
+        const hi = i + 1 < len ? from[o + (i + 1) * stride] : 0;
+        to[o + i * stride] = dilate ? m | lo | hi : m & lo & hi;
+      }
+    }
+  };
+  pass(src, tmp, w, 1, h, w);
+  pass(tmp, out, h, w, w, 1);
+  return out;
+}
+
 /** Labels every pixel BACKGROUND, INTERIOR or SILHOUETTE from the two masks (Uint8Array, w*h, 0/1). */
 export function regions(maskA, maskB, w, h) {
+  const both = new Uint8Array(w * h), either = new Uint8Array(w * h);
+  for (let p = 0; p < w * h; ++p) {
+    both[p] = maskA[p] & maskB[p];
+    either[p] = maskA[p] | maskB[p];
+  }
+  const inner = filter3(both, w, h, false), near = filter3(either, w, h, true);
   const labels = new Uint8Array(w * h);
-  for (let y = 0; y < h; ++y)
-    for (let x = 0; x < w; ++x) {
-      let both = 0, either = 0, n = 0;
-      for (let dy = -1; dy <= 1; ++dy)
-        for (let dx = -1; dx <= 1; ++dx) {
-          const u = x + dx, v = y + dy;
-          ++n;
-          if (u < 0 || v < 0 || u >= w || v >= h) continue;  // outside the image counts as uncovered
-          const a = maskA[v * w + u], b = maskB[v * w + u];
-          both += a & b;
-          either |= a | b;
-        }
-      labels[y * w + x] = both === n ? INTERIOR : either ? SILHOUETTE : BACKGROUND;
-    }
+  for (let p = 0; p < w * h; ++p) labels[p] = inner[p] ? INTERIOR : near[p] ? SILHOUETTE : BACKGROUND;
   return labels;
 }
 
@@ -67,30 +78,35 @@ export function luma(rgba, count) {
 // Wang et al. 2004: an 11x11 Gaussian window of sigma 1.5, C1 = (0.01 L)^2, C2 = (0.03 L)^2, L = 1.
 export const SSIM_RADIUS = 5, SSIM_SIGMA = 1.5, SSIM_C1 = 0.01 ** 2, SSIM_C2 = 0.03 ** 2;
 export const GAUSSIAN = (() => {
-  const g = [];
-  for (let i = -SSIM_RADIUS; i <= SSIM_RADIUS; ++i) g.push(Math.exp(-(i * i) / (2 * SSIM_SIGMA * SSIM_SIGMA)));
+  const g = new Float64Array(2 * SSIM_RADIUS + 1);
+  for (let i = -SSIM_RADIUS; i <= SSIM_RADIUS; ++i) g[i + SSIM_RADIUS] = Math.exp(-(i * i) / (2 * SSIM_SIGMA * SSIM_SIGMA));
   return g;
 })();
 
-// Separable Gaussian blur; the window is cut at the image's border and renormalised over what is left.
+// Separable Gaussian blur; the window is cut at the image's border and renormalised over what is left. The
+// vertical pass adds whole rows (memory order).
 function blur(src, w, h) {
-  const tmp = new Float64Array(w * h), out = new Float64Array(w * h);
-  const pass = (from, to, len, stride, lines, lineStride) => {
-    for (let l = 0; l < lines; ++l)
-      for (let i = 0; i < len; ++i) {
-        let s = 0, ws = 0;
-        for (let k = -SSIM_RADIUS; k <= SSIM_RADIUS; ++k) {
-          const j = i + k;
-          if (j < 0 || j >= len) continue;
-          const g = GAUSSIAN[k + SSIM_RADIUS];
-          s += g * from[l * lineStride + j * stride];
-          ws += g;
-        }
-        to[l * lineStride + i * stride] = s / ws;
-      }
-  };
-  pass(src, tmp, w, 1, h, w);
-  pass(tmp, out, h, w, w, 1);
+  const tmp = new Float64Array(w * h), out = new Float64Array(w * h), r = SSIM_RADIUS, g = GAUSSIAN;
+  const weights = (len) => Float64Array.from({ length: len }, (_, i) => {
+    let ws = 0;
+    for (let k = Math.max(-r, -i); k <= Math.min(r, len - 1 - i); ++k) ws += g[k + r];
+    return ws;
+  });
+  const wx = weights(w), wy = weights(h);
+  for (let y = 0; y < h; ++y)
+    for (let x = 0, o = y * w; x < w; ++x) {
+      const k0 = Math.max(-r, -x), k1 = Math.min(r, w - 1 - x);
+      let s = 0;
+      for (let k = k0; k <= k1; ++k) s += g[k + r] * src[o + x + k];
+      tmp[o + x] = s / wx[x];
+    }
+  for (let y = 0; y < h; ++y) {
+    const o = y * w, k1 = Math.min(r, h - 1 - y), ws = wy[y];
+    for (let k = Math.max(-r, -y); k <= k1; ++k) {
+      const gk = g[k + r] / ws, q = (y + k) * w;
+      for (let x = 0; x < w; ++x) out[o + x] += gk * tmp[q + x];
+    }
+  }
   return out;
 }
 
@@ -125,12 +141,35 @@ export function ssimSums(map, labels) {
   return out;
 }
 
+// The rectangle holding every counted pixel, grown by the SSIM window and cut to the image: SSIM computed on
+// it equals SSIM on the whole image at every counted pixel (their windows lie inside it or are cut by the image).
+function crop(labels, w, h) {
+  let x0 = w, y0 = h, x1 = -1, y1 = -1;
+  for (let y = 0; y < h; ++y)
+    for (let x = 0; x < w; ++x)
+      if (labels[y * w + x] !== BACKGROUND) {
+        x0 = Math.min(x0, x), x1 = Math.max(x1, x), y0 = Math.min(y0, y), y1 = Math.max(y1, y);
+      }
+  if (x1 < 0) return null;
+  const r = SSIM_RADIUS;
+  return { x0: Math.max(0, x0 - r), y0: Math.max(0, y0 - r), x1: Math.min(w - 1, x1 + r), y1: Math.min(h - 1, y1 + r) };
+}
+
+function cut(a, w, c, channels) {
+  const cw = c.x1 - c.x0 + 1, ch = c.y1 - c.y0 + 1, out = new a.constructor(cw * ch * channels);
+  for (let y = 0; y < ch; ++y) out.set(a.subarray(((c.y0 + y) * w + c.x0) * channels, ((c.y0 + y) * w + c.x1 + 1) * channels), y * cw * channels);
+  return out;
+}
+
 /** Everything the judge pools for one view: {interior, silhouette} each {sse, samples, ssim_sum, pixels},
  *  and the two masks' pixel counts. */
 export function compareView(rgbaA, maskA, rgbaB, maskB, w, h) {
   const labels = regions(maskA, maskB, w, h);
   const se = squaredErrors(rgbaA, rgbaB, labels);
-  const ss = ssimSums(ssimMap(luma(rgbaA, w * h), luma(rgbaB, w * h), w, h), labels);
+  const c = crop(labels, w, h) ?? { x0: 0, y0: 0, x1: 0, y1: 0 };
+  const cw = c.x1 - c.x0 + 1, ch = c.y1 - c.y0 + 1;
+  const map = ssimMap(luma(cut(rgbaA, w, c, 4), cw * ch), luma(cut(rgbaB, w, c, 4), cw * ch), cw, ch);
+  const ss = ssimSums(map, cut(labels, w, c, 1));
   const region = (r) => ({ sse: se[r].sse, samples: se[r].n, ssim_sum: ss[r].sum, pixels: ss[r].n });
   let coveredA = 0, coveredB = 0;
   for (let p = 0; p < w * h; ++p) {
