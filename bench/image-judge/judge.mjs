@@ -88,8 +88,13 @@ const textureNote = (who, f) => (f && f.missing ? `${who}: ${f.missing} of ${f.t
 
 async function judgeCharacter(page, c, o, out) {
   const levels = c.levels.filter((l) => l.gpTriangles > 0);
-  for (const l of c.levels.filter((x) => x.gpTriangles === 0)) out.rows.push(`${c.name.padEnd(12)} ${l.ratio.padStart(5)}   gltfpack kept no triangle`);
-  if (!levels.length) return;
+  const none = (l) => `${c.name.padEnd(12)} ${l.ratio.padStart(5)}   gltfpack kept no triangle`;
+  const noneLine = (l) => JSON.stringify({ character: c.name, ratio: Number(l.ratio), gltfpack: { triangles: 0 },
+    notes: ['gltfpack kept no triangle'] });
+  if (!levels.length) {
+    for (const l of c.levels) out.rows.push(none(l)), out.jsonl.push(noneLine(l));
+    return;
+  }
   const reports = levels.map((l) => JSON.parse(readFileSync(l.report, 'utf8')));
   levels.forEach((l, i) => { l.oursTriangles = reports[i].lods[0].faces; });
   const held = thin(reports[0].lods[0].heldout_times ?? [], o.frames);
@@ -99,8 +104,12 @@ async function judgeCharacter(page, c, o, out) {
     sheets: o.images ? levels.map((l) => [`gp ${l.ratio}`, `ours ${l.ratio}`]) : [],
   };
   const r = await page.evaluate((j) => window.judge.run(j), job);
-  if (process.env.OMSK_JUDGE_TIMING) console.error(c.name, JSON.stringify(r.timing));
-  for (const l of levels) {
+  for (const l of c.levels) {
+    if (l.gpTriangles === 0) {
+      out.rows.push(none(l));
+      out.jsonl.push(noneLine(l));
+      continue;
+    }
     const res = (k) => r.lods[`${k} ${l.ratio}`];
     const [gp, ours] = [res('gp'), res('ours')];
     const pooled = (x) => (x.error ? null : pool(x.views));
@@ -151,7 +160,9 @@ async function main() {
       try {
         await judgeCharacter(p, c, o, out);
       } catch (e) {
-        out.rows.push(`${c.name.padEnd(12)} failed: ${String(e.message ?? e).split('\n')[0]}`);
+        const why = String(e.message ?? e).split('\n')[0].replace(/^page\.evaluate: (Error: )?/, '');
+        out.rows.push(`${c.name.padEnd(12)} failed: ${why}`);
+        out.jsonl.push(JSON.stringify({ character: c.name, error: why }));
       }
       for (const r of out.rows.slice(before)) console.log(r);
     }

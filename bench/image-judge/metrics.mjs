@@ -110,16 +110,24 @@ function blur(src, w, h) {
   return out;
 }
 
-/** The SSIM map of two luma images (Float64Array, w*h). */
-export function ssimMap(a, b, w, h) {
-  const n = w * h;
-  const aa = new Float64Array(n), bb = new Float64Array(n), ab = new Float64Array(n);
+/** What SSIM needs of the reference image, computed once for every image compared with it: its luma and the
+ *  window's mean of it and of its square. */
+export function reference(rgba, w, h) {
+  const y = luma(rgba, w * h);
+  return { w, h, y, mean: blur(y, w, h), meanSq: blur(y.map((v) => v * v), w, h) };
+}
+
+// The SSIM map over the rectangle c of the image (cw x ch, row-major) between the reference and luma b.
+function ssimOver(ref, b, c) {
+  const cw = c.x1 - c.x0 + 1, ch = c.y1 - c.y0 + 1, n = cw * ch;
+  const bc = cut(b, ref.w, c, 1), ac = cut(ref.y, ref.w, c, 1), ma = cut(ref.mean, ref.w, c, 1);
+  const saa = cut(ref.meanSq, ref.w, c, 1);
+  const bb = new Float64Array(n), ab = new Float64Array(n);
   for (let p = 0; p < n; ++p) {
-    aa[p] = a[p] * a[p];
-    bb[p] = b[p] * b[p];
-    ab[p] = a[p] * b[p];
+    bb[p] = bc[p] * bc[p];
+    ab[p] = ac[p] * bc[p];
   }
-  const [ma, mb, saa, sbb, sab] = [a, b, aa, bb, ab].map((x) => blur(x, w, h));
+  const [mb, sbb, sab] = [bc, bb, ab].map((x) => blur(x, cw, ch));
   const map = new Float64Array(n);
   for (let p = 0; p < n; ++p) {
     const va = saa[p] - ma[p] * ma[p], vb = sbb[p] - mb[p] * mb[p], cov = sab[p] - ma[p] * mb[p];
@@ -127,6 +135,12 @@ export function ssimMap(a, b, w, h) {
       ((ma[p] * ma[p] + mb[p] * mb[p] + SSIM_C1) * (va + vb + SSIM_C2));
   }
   return map;
+}
+
+/** The SSIM map of two luma images (Float64Array, w*h). */
+export function ssimMap(a, b, w, h) {
+  const ref = { w, h, y: a, mean: blur(a, w, h), meanSq: blur(a.map((v) => v * v), w, h) };
+  return ssimOver(ref, b, { x0: 0, y0: 0, x1: w - 1, y1: h - 1 });
 }
 
 /** Per region: the sum of the SSIM map and the number of pixels summed. */
@@ -162,14 +176,12 @@ function cut(a, w, c, channels) {
 }
 
 /** Everything the judge pools for one view: {interior, silhouette} each {sse, samples, ssim_sum, pixels},
- *  and the two masks' pixel counts. */
-export function compareView(rgbaA, maskA, rgbaB, maskB, w, h) {
+ *  and the two masks' pixel counts. \p ref: reference(rgbaA, w, h), when A is compared with several images. */
+export function compareView(rgbaA, maskA, rgbaB, maskB, w, h, ref = reference(rgbaA, w, h)) {
   const labels = regions(maskA, maskB, w, h);
   const se = squaredErrors(rgbaA, rgbaB, labels);
   const c = crop(labels, w, h) ?? { x0: 0, y0: 0, x1: 0, y1: 0 };
-  const cw = c.x1 - c.x0 + 1, ch = c.y1 - c.y0 + 1;
-  const map = ssimMap(luma(cut(rgbaA, w, c, 4), cw * ch), luma(cut(rgbaB, w, c, 4), cw * ch), cw, ch);
-  const ss = ssimSums(map, cut(labels, w, c, 1));
+  const ss = ssimSums(ssimOver(ref, luma(rgbaB, w * h), c), cut(labels, w, c, 1));
   const region = (r) => ({ sse: se[r].sse, samples: se[r].n, ssim_sum: ss[r].sum, pixels: ss[r].n });
   let coveredA = 0, coveredB = 0;
   for (let p = 0; p < w * h; ++p) {

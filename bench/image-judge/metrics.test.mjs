@@ -3,7 +3,7 @@
 //   node bench/image-judge/metrics.test.mjs
 import assert from 'node:assert/strict';
 import {
-  regions, compareView, psnr, ssimMap, luma, pool, INTERIOR, SILHOUETTE, GAUSSIAN, SSIM_C1, SSIM_C2,
+  regions, compareView, psnr, ssimMap, ssimSums, luma, pool, INTERIOR, SILHOUETTE, GAUSSIAN, SSIM_C1, SSIM_C2,
 } from './metrics.mjs';
 
 const W = 20, H = 20;
@@ -94,6 +94,17 @@ check('SSIM of a flat image against checkerboard noise: the closed form away fro
     const mb = mu + eps * s0 * q * q, vb = eps * eps * (1 - q ** 4);
     const want = ((2 * mu * mb + SSIM_C1) / (mu * mu + mb * mb + SSIM_C1)) * (SSIM_C2 / (vb + SSIM_C2));
     close(map[y * W + x], want, 1e-9, `SSIM at (${x}, ${y})`);
+  }
+});
+
+check('SSIM on the cropped rectangle equals SSIM on the whole image at every counted pixel', () => {
+  const a = image((x, y) => (x * 37 + y * 11) % 256), b = image((x, y) => (x * 37 + y * 13) % 256);
+  const ma = square(8, 9, 6), mb = square(9, 8, 6);
+  const v = compareView(a, ma, b, mb, W, H);
+  const whole = ssimSums(ssimMap(luma(a, W * H), luma(b, W * H), W, H), regions(ma, mb, W, H));
+  for (const [r, key] of [[INTERIOR, 'interior'], [SILHOUETTE, 'silhouette']]) {
+    assert.equal(v[key].pixels, whole[r].n);
+    close(v[key].ssim_sum, whole[r].sum, 1e-9, `${key} SSIM sum`);
   }
 });
 

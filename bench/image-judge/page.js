@@ -5,7 +5,7 @@
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { RoomEnvironment } from 'three/addons/environments/RoomEnvironment.js';
-import { compareView } from './metrics.mjs';
+import { compareView, reference } from './metrics.mjs';
 
 // Named view directions (from the character's centre towards the camera; glTF's +Y up, +Z front).
 const DIRECTIONS = {
@@ -49,10 +49,26 @@ async function load(url) {
   return { gltf, mixer: new THREE.AnimationMixer(gltf.scene), textures: textures.length, missing, triangles };
 }
 
-// Clips are matched by name; GLTFLoader names an unnamed one animation_<index>, our report names it "".
+// Clips are matched by name. Our tool names an unnamed clip clip<index>, GLTFLoader animation_<index>.
 function clipOf(file, frame) {
   const anims = file.gltf.animations;
-  return anims.find((a) => a.name === frame.clip) ?? (frame.clip === '' ? anims[frame.index ?? 0] : undefined);
+  const exact = anims.find((a) => a.name === frame.clip);
+  if (exact) return exact;
+  const m = /^clip(\d+)$/.exec(frame.clip);
+  return m && anims[Number(m[1])]?.name === `animation_${m[1]}` ? anims[Number(m[1])] : undefined;
+}
+
+// Frees a file's GPU buffers and textures: one page judges every character in turn.
+function dispose(file) {
+  file.mixer.stopAllAction();
+  file.gltf.scene.traverse((o) => {
+    if (!o.isMesh) return;
+    o.geometry.dispose();
+    for (const m of Array.isArray(o.material) ? o.material : [o.material]) {
+      for (const v of Object.values(m)) if (v && v.isTexture) v.dispose();
+      m.dispose();
+    }
+  });
 }
 
 function pose(file, frame) {
@@ -142,10 +158,10 @@ function sheet(rows, size) {
  *  Returns {original: {textures, missing, triangles}, lods: {key: {views, textures, missing, triangles} or
  *  {error}}, sheets: [{frame, keys, png}]} (sheets only when asked: each lists the columns after the original). */
 async function run(job) {
-  const t00 = performance.now();
   if (!renderer) setup(job.size);
-  const tSetup = performance.now() - t00;
-  const original = await load(job.original);
+  const original = await load(job.original).catch((e) => {
+    throw new Error(`three.js could not load the original: ${String(e.message ?? e).split('\n')[0]}`);
+  });
   const lods = {};
   for (const l of job.lods) {
     try {
@@ -158,11 +174,13 @@ async function run(job) {
   for (const [key, f] of Object.entries(lods))
     results[key] = f.error ? { error: f.error } : { views: [], textures: f.textures, missing: f.missing, triangles: f.triangles };
   const sheets = [];
-  const timing = { setup: tSetup, load: performance.now() - t00 - tSetup, render: 0, compare: 0, original: 0, pose: 0, start: performance.now() };
   const frames = job.frames.length ? job.frames : [null];
   for (const [fi, frame] of frames.entries()) {
-    const tp = performance.now();
-    pose(original, frame);
+    try {
+      pose(original, frame);
+    } catch (e) {
+      throw new Error(`the original: ${e.message}`);
+    }
     for (const [key, f] of Object.entries(lods)) {
       if (f.error) continue;
       try {
@@ -173,23 +191,17 @@ async function run(job) {
       }
     }
     const box = posedBox(original.gltf.scene);
-    timing.pose += performance.now() - tp;
     const renders = {};
     for (const dir of job.directions) {
       aim(box, DIRECTIONS[dir]);
-      const to = performance.now();
       const o = render(original, job.size);
-      timing.original += performance.now() - to;
+      const ref = reference(o.rgba, job.size, job.size);
       renders[dir] = { original: o.rgba };
       for (const [key, f] of Object.entries(lods)) {
         if (f.error) continue;
-        const t0 = performance.now();
         const r = render(f, job.size);
-        const t1 = performance.now();
         renders[dir][key] = r.rgba;
-        results[key].views.push(compareView(o.rgba, o.mask, r.rgba, r.mask, job.size, job.size));
-        timing.render += t1 - t0;
-        timing.compare += performance.now() - t1;
+        results[key].views.push(compareView(o.rgba, o.mask, r.rgba, r.mask, job.size, job.size, ref));
       }
     }
     for (const keys of job.sheets ?? []) {
@@ -198,12 +210,11 @@ async function run(job) {
       sheets.push({ frame: fi, keys, png: sheet(rows, job.size) });
     }
   }
-  for (const f of [original, ...Object.values(lods)]) if (f.gltf) f.mixer.stopAllAction();
+  for (const f of [original, ...Object.values(lods)]) if (f.gltf) dispose(f);
   return {
     original: { textures: original.textures, missing: original.missing, triangles: original.triangles },
     lods: results,
     sheets,
-    timing: { ...timing, total: performance.now() - timing.start },
   };
 }
 
