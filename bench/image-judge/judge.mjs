@@ -78,7 +78,7 @@ function row(c, level, gp, ours, note) {
     `${mse.padStart(7)}${note ? `  ${note}` : ''}`;
 }
 
-export const HEADER = `${'character'.padEnd(12)} ${'ratio'.padStart(5)} ${'triangles'.padStart(11)} | ` +
+const HEADER = `${'character'.padEnd(12)} ${'ratio'.padStart(5)} ${'triangles'.padStart(11)} | ` +
   `${'PSNR interior'.padStart(13)} | ${'PSNR silh.'.padStart(13)} | ${'SSIM interior'.padStart(13)} | ` +
   `${'SSIM silh.'.padStart(13)} | ${'MSE'.padStart(7)}\n${''.padEnd(30)} | ${'gp'.padStart(6)} ${'ours'.padStart(6)} | ` +
   `${'gp'.padStart(6)} ${'ours'.padStart(6)} | ${'gp'.padStart(6)} ${'ours'.padStart(6)} | ${'gp'.padStart(6)} ` +
