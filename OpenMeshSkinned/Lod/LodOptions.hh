@@ -48,7 +48,7 @@ struct LodOptions {
 /// Past this many example poses the schedule stops being a sample of the clips and becomes the clips.
 constexpr int kMaxLodPoses = 1000;
 /// What one example or held-out pose costs per vertex: posed position and pose quadric in the solver, posed
-/// copies in the evaluation (measured: about 240 KB per pose on a 2,000-vertex character).
+/// copies in the evaluation (measured: about 120 bytes per vertex and pose; rounded up here).
 constexpr size_t kBytesPerVertexPose = 128;
 
 /// Throws LodOptionsError when \p options cannot be right for any mesh.

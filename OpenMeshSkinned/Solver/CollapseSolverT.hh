@@ -171,8 +171,8 @@ public:
   const Pose& pose(int j) const { return poses_.pose(j); }
   /// Vertex \p v as it is, posed in example pose \p j.
   Eigen::Vector3d posed(VertexHandle v, int j) const { return poses_.posed(v, j); }
-  /// For a module that calls posed() all the time: keep the posed positions in doubles as well (26 MB
-  /// more on a 240k-triangle character in 9 poses) instead of computing each. Before prepare().
+  /// For a module that calls posed() all the time: keep the posed positions in doubles as well (24 bytes
+  /// more per vertex and pose) instead of computing each. Before prepare().
   void keep_exact_posed() { poses_.set_keep_exact(true); }
   /// A rest position with a skin, posed in example pose \p j (as a merged vertex would be).
   Eigen::Vector3d posed_point(const Eigen::Vector3d& rest, const Influences& w, int j) const {

@@ -3,7 +3,7 @@
  *  Per vertex and example pose: the posed position and the Garland-Heckbert quadric of the posed faces.
  *  Stored vertex-major (a vertex's poses side by side), as the solve reads them.
  *
- *  The stored positions are floats (13 MB less on a 240k-triangle character in 9 poses). Only the
+ *  The stored positions are floats (12 bytes less per vertex and pose). Only the
  *  fold-over check reads them, where a rounding of 10^-7 of the model's size turns no face that matters;
  *  the quadrics are built from positions in doubles, and posed() computes one in doubles, or reads it
  *  when set_keep_exact() asked for them to be kept as well (the deviation bound reads them all the time).

@@ -40,13 +40,13 @@ struct CollapseResult {
 struct SolveSettings {
   int max_influences = Influences::kCapacity;
   // Greedy kept the posed surface closer on every real character and cap measured (bench/README.md,
-  // cap-strategy workload): a third of TopN's held-out error on the FBX character, whose raw weights use
+  // "omsk-bench: the papers' workloads", cap-strategy), by far on the FBX character, whose raw weights use
   // up to 8 bones. (TopN looked better before the weight solve's badly scaled KKT systems were fixed.)
   CapStrategy strategy = CapStrategy::Greedy;
   int max_iterations = 8;
-  // A round that lowers the error by less than this fraction ends the alternation. 1e-2 halved the weight
-  // solves against 1e-4 (the human on one thread, same session: 3.11 -> 2.61 s) with the peer benchmark's
-  // held-out errors unchanged to within its noise (bench/README.md, "Alternation tolerance").
+  // A round that lowers the error by less than this fraction ends the alternation. 1e-2 needs far fewer
+  // weight solves than 1e-4, with the peer benchmark's held-out errors unchanged to within its noise
+  // (bench/README.md, "Defaults chosen by measurement").
   double tolerance = 1e-2;
 };
 
