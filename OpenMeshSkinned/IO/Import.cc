@@ -247,7 +247,6 @@ ImportReport detail::import_scene(const std::string& path, const std::string& re
   finish_mesh(mesh, rep, path);
   read_clips(scene, sn, joints, instances, target_base, mesh, rep.warnings);
   rep.clips = clips(mesh).size();
-  example_poses(mesh) = {Pose::identity(skeleton(mesh).size())};
   check_input(mesh, path, rep.warnings);
   for (const std::string& m : log.data_loss()) rep.warnings.push_back("the reader dropped data: " + m);
   try {

@@ -5,7 +5,7 @@
  */
 
 #include "OpenMeshSkinned/IO/IOError.hh"
-#include "OpenMeshSkinned/Mesh/SkinnedMesh.hh"
+#include "OpenMeshSkinned/Skin/SkinnedMesh.hh"
 
 #include <string>
 #include <vector>
@@ -72,7 +72,8 @@ struct ImportReport {
  *  with J_k the joint node's world matrix (every ancestor, the scene root included) and O_k assimp's
  *  offset matrix; the skinned mesh's own node transform plays no part. Every mesh is stored in the space
  *  where it rests on screen, so the identity pose shows the character as a viewer does; a mesh without a
- *  skin is bound rigidly to its node (which becomes a joint). The example poses are set to the bind pose.
+ *  skin is bound rigidly to its node (which becomes a joint). No example poses are set: the decimater
+ *  modules need them (sample_poses_evenly over a clip, or use_bind_pose_only()).
  *  Throws IOError (missing, empty, unreadable or invalid file, or an unusable skin). */
 ImportReport import_skinned(const std::string& path, SkinnedMesh& mesh, const ImportOptions& opt = {});
 
