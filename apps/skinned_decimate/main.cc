@@ -5,7 +5,7 @@
 
 #include <OpenMeshSkinned/IO/PrintableText.hh>
 #include <OpenMeshSkinned/Lod/LodMethods.hh>
-#include <OpenMeshSkinned/Solver/HugePages.hh>
+#include <OpenMeshSkinned/Platform/HugePages.hh>
 
 #include <CLI/CLI.hpp>
 
