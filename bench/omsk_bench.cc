@@ -10,7 +10,7 @@
 #include <OpenMeshSkinned/Mesh/LoopSubdivision.hh>
 #include <OpenMeshSkinned/Mesh/Procedural.hh>
 #include <OpenMeshSkinned/Skin/PoseSchedule.hh>
-#include <OpenMeshSkinned/Solver/HugePages.hh>
+#include <OpenMeshSkinned/Platform/HugePages.hh>
 
 #include <OpenMesh/Tools/Decimater/DecimaterT.hh>
 #include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>

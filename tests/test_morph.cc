@@ -3,7 +3,7 @@
 #include "gltf_spec.hh"
 
 #include <OpenMeshSkinned/Decimater/ModSkinnedQuadricT.hh>
-#include <OpenMeshSkinned/Decimater/MorphTransferT.hh>
+#include <OpenMeshSkinned/Collapse/MorphTransferT.hh>
 #include <OpenMeshSkinned/IO/Import.hh>
 #include <OpenMeshSkinned/Mesh/Procedural.hh>
 #include <OpenMeshSkinned/Skin/LinearBlendSkinning.hh>

@@ -1,7 +1,7 @@
 #pragma once
 /** \file ModDeviationBoundT.hh */
 
-#include "OpenMeshSkinned/Decimater/FoldOver.hh"
+#include "OpenMeshSkinned/Collapse/FoldOver.hh"
 #include "OpenMeshSkinned/Decimater/SolverModuleT.hh"
 #include "OpenMeshSkinned/Mesh/ClosestPoint.hh"
 

@@ -7,7 +7,7 @@
  */
 
 #include "OpenMeshSkinned/Deform/KeyframeGA.hh"
-#include "OpenMeshSkinned/Mesh/SkinnedMesh.hh"
+#include "OpenMeshSkinned/Skin/SkinnedMesh.hh"
 #include "OpenMeshSkinned/Skin/PoseSchedule.hh"
 
 #include <vector>

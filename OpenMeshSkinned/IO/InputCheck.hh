@@ -8,7 +8,7 @@
  */
 
 #include "OpenMeshSkinned/IO/IOError.hh"
-#include "OpenMeshSkinned/Mesh/SkinnedMesh.hh"
+#include "OpenMeshSkinned/Skin/SkinnedMesh.hh"
 #include "OpenMeshSkinned/Skin/Skeleton.hh"
 
 #include <string>

@@ -28,12 +28,11 @@ public:
 
   explicit PoseCacheT(Mesh& mesh) : mesh_(mesh) {}
 
-  /// Reads the example poses ("m:skin_poses"; the bind pose when there are none) and fills both tables
-  /// from the mesh as it is now, on up to \p threads threads (the tables do not depend on it).
+  /// Reads the example poses ("m:skin_poses"; std::invalid_argument when there are none) and fills both
+  /// tables from the mesh as it is now, on up to \p threads threads (the tables do not depend on it).
   void build(int threads = 1) {
     h_inf_ = influences_handle(mesh_);
-    poses_ = example_poses(mesh_);
-    if (poses_.empty()) poses_.push_back(Pose::identity(skeleton(mesh_).size()));
+    poses_ = required_example_poses(mesh_);
     // Every solve downstream assumes finite poses: a NaN would never converge.
     for (const Pose& p : poses_)
       if (!p.finite())
