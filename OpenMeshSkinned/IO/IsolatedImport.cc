@@ -1,5 +1,6 @@
 #include "OpenMeshSkinned/IO/IsolatedImport.hh"
 
+#include "OpenMeshSkinned/IO/IOError.hh"
 #include "OpenMeshSkinned/IO/ImportArchive.hh"
 #include "OpenMeshSkinned/IO/PrintableText.hh"
 
