@@ -25,7 +25,7 @@ struct Parts {
   CollapseApplierT<Mesh> applier;
 };
 
-Mesh::HalfedgeHandle collapsible(const Mesh& mesh, int from) {
+Mesh::HalfedgeHandle collapsible(Mesh& mesh, int from) {
   for (int i = from; i < int(mesh.n_halfedges()); ++i)
     if (mesh.is_collapse_ok(Mesh::HalfedgeHandle(i))) return Mesh::HalfedgeHandle(i);
   return Mesh::HalfedgeHandle();

@@ -26,13 +26,13 @@ struct Parts {
 };
 
 // An edge of the tube's middle ring, away from its open ends.
-CI middle_edge(const Mesh& mesh) {
+CI middle_edge(Mesh& mesh) {
   for (auto heh : mesh.halfedges())
     if (!mesh.is_boundary(mesh.from_vertex_handle(heh)) && !mesh.is_boundary(mesh.to_vertex_handle(heh)) &&
         mesh.is_collapse_ok(heh) && std::abs(mesh.point(mesh.from_vertex_handle(heh))[1] - 1.0) < 0.2)
-      return CI(const_cast<Mesh&>(mesh), heh);
+      return CI(mesh, heh);
   ADD_FAILURE() << "no middle edge";
-  return CI(const_cast<Mesh&>(mesh), Mesh::HalfedgeHandle(0));
+  return CI(mesh, Mesh::HalfedgeHandle(0));
 }
 
 }  // namespace
