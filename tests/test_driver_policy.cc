@@ -11,6 +11,9 @@
 
 #include <OpenMesh/Tools/Decimater/DecimaterT.hh>
 
+#include <algorithm>
+#include <vector>
+
 using namespace OpenMeshSkinned;
 using omsk_test::Mesh;
 using CI = OpenMesh::Decimater::CollapseInfoT<Mesh>;
@@ -83,14 +86,14 @@ TEST(DriverPolicy, UnderDecimaterTACollapsePricierThanItsSweepsBestCannotWin) {
   Mesh mesh = make_bending_cylinder(12, 12);
   Parts p(mesh);
   const auto v0 = Mesh::VertexHandle(40);
-  std::vector<CI> out;
-  for (auto heh : mesh.voh_range(v0)) out.emplace_back(mesh, heh);
-  ASSERT_GE(out.size(), 3u);
-  std::sort(out.begin(), out.end(), [&](const CI& a, const CI& b) {
-    return p.answers.settings().priority(p.answers.solve(a)) < p.answers.settings().priority(p.answers.solve(b));
-  });
-  const double cheapest = p.answers.settings().priority(p.answers.solve(out.front()));
-  ASSERT_LT(cheapest, p.answers.settings().priority(p.answers.solve(out.back())));
+  auto priority = [&](Mesh::HalfedgeHandle h) { return p.answers.settings().priority(p.answers.solve(CI(mesh, h))); };
+  std::vector<Mesh::HalfedgeHandle> hs;
+  for (auto heh : mesh.voh_range(v0)) hs.push_back(heh);
+  ASSERT_GE(hs.size(), 3u);
+  std::sort(hs.begin(), hs.end(), [&](auto a, auto b) { return priority(a) < priority(b); });
+  const std::vector<CI> out = {CI(mesh, hs.front()), CI(mesh, hs.back())};
+  const double cheapest = priority(hs.front());
+  ASSERT_LT(cheapest, priority(hs.back()));
   p.policy.begin_pricing(out.front());
   EXPECT_FALSE(p.policy.cannot_win(out.back())) << "nothing legal priced yet in this sweep";
   p.policy.note_legal(out.front(), cheapest);
