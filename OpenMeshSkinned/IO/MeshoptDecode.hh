@@ -12,7 +12,7 @@
 
 namespace OpenMeshSkinned::detail {
 
-/// The two names of the extension: EXT_ as gltfpack writes it, KHR_ as ratified.
+/// The extension's two names (EXT_ and KHR_), decoded alike.
 extern const char* const kMeshoptExtensions[2];
 
 /** Decodes every compressed buffer view of \p doc in place: each then points at its decoded bytes (added
