@@ -1,18 +1,21 @@
-// The drop-in example: read a skinned character, add the OpenMeshSkinned modules to OpenMesh's standard
-// DecimaterT, decimate, write glTF. Copy this into your own tool.
+// The drop-in example: read a skinned character, add the OpenMeshSkinned modules to a decimater, decimate,
+// write glTF. Copy this into your own tool.
 //
 //   omsk-example [INPUT [OUTPUT.glb [RATIO [POSES]]]]
 //
 // Without INPUT it builds DeCoro's bending leg (a tapered cylinder, knee bent 0..90 degrees) and writes
 // omsk-example-out/leg.glb.
+//
+// The driver is LazyDecimaterT, the one the tool uses: it has DecimaterT's interface and takes OpenMesh's own
+// modules too. OpenMesh's DecimaterT works with the same three modules (swap the type below); it is slower,
+// and between two decimate calls it needs decimater.module(fold).release_deferred().
+#include <OpenMeshSkinned/Decimater/LazyDecimaterT.hh>
 #include <OpenMeshSkinned/Decimater/ModSkinnedFoldOverT.hh>
 #include <OpenMeshSkinned/Decimater/ModSkinnedQuadricT.hh>
 #include <OpenMeshSkinned/Decimater/ModWeightCapT.hh>
 #include <OpenMeshSkinned/IO/ExportGltf.hh>
 #include <OpenMeshSkinned/IO/Import.hh>
 #include <OpenMeshSkinned/Mesh/Procedural.hh>
-
-#include <OpenMesh/Tools/Decimater/DecimaterT.hh>
 
 #include <chrono>
 #include <filesystem>
@@ -42,20 +45,27 @@ int main(int argc, char** argv) {
       std::filesystem::create_directories("omsk-example-out");
     }
 
-    // Example poses: evenly spaced over the first clip (the generated leg brings its own: 0 and 90 degrees).
+    // The example poses are what every collapse is judged in: evenly spaced over the first clip (the
+    // generated leg brings its own, 0 and 90 degrees). A character without a clip can only be judged in its
+    // rest pose, and that has to be asked for: the modules refuse a mesh without example poses.
     auto& clips = OpenMeshSkinned::clips(mesh);
     if (argc > 1 && !clips.empty())
       OpenMeshSkinned::example_poses(mesh) =
           OpenMeshSkinned::sample_poses_evenly(OpenMeshSkinned::skeleton(mesh), clips[0], n_poses);
+    else if (argc > 1) {
+      std::cout << argv[1] << " has no animation: decimating in the rest pose alone.\n";
+      OpenMeshSkinned::use_bind_pose_only(mesh);
+    }
 
-    // The three modules, added to a plain OpenMesh decimater like any of OpenMesh's own.
-    OpenMesh::Decimater::DecimaterT<Mesh> decimater(mesh);
+    // The three modules, added like any of OpenMesh's own.
+    OpenMeshSkinned::LazyDecimaterT<Mesh> decimater(mesh);
     OpenMeshSkinned::ModSkinnedQuadricT<Mesh>::Handle quadric;
     OpenMeshSkinned::ModWeightCapT<Mesh>::Handle cap;
     OpenMeshSkinned::ModSkinnedFoldOverT<Mesh>::Handle fold;
     decimater.add(quadric);
     decimater.add(cap);
     decimater.add(fold);
+    decimater.module(quadric).set_error_per_area(true);  // the tool's pricing: error over the area it stands for
     decimater.module(cap).set_max_influences(4);
     decimater.module(fold).set_max_angle(90.0);
     if (!decimater.initialize()) throw std::runtime_error("decimater did not initialize");

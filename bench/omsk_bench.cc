@@ -9,8 +9,8 @@
 #include <OpenMeshSkinned/IO/Import.hh>
 #include <OpenMeshSkinned/Mesh/LoopSubdivision.hh>
 #include <OpenMeshSkinned/Mesh/Procedural.hh>
+#include <OpenMeshSkinned/Platform/HugePages.hh>
 #include <OpenMeshSkinned/Skin/PoseSchedule.hh>
-#include <OpenMeshSkinned/Solver/HugePages.hh>
 
 #include <OpenMesh/Tools/Decimater/DecimaterT.hh>
 #include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>

@@ -37,6 +37,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (!clips.empty())
     OpenMeshSkinned::example_poses(mesh) =
         OpenMeshSkinned::sample_poses_evenly(OpenMeshSkinned::skeleton(mesh), clips[0], 3);
+  else
+    OpenMeshSkinned::use_bind_pose_only(mesh);
   try {
     OpenMeshSkinned::LazyDecimaterT<Mesh> decimater(mesh);
     OpenMeshSkinned::ModSkinnedQuadricT<Mesh>::Handle quadric;

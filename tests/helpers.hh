@@ -20,7 +20,7 @@ using Mesh = OpenMeshSkinned::SkinnedMesh;
 
 inline std::string model(const std::string& rel) { return std::string(OMSK_TEST_MODELS) + "/" + rel; }
 
-/// A real character with K example poses from its first clip.
+/// A real character with K example poses from its first clip (the bind pose alone when it has none).
 inline Mesh load_character(const std::string& rel, int poses = 8) {
   Mesh mesh;
   OpenMeshSkinned::import_skinned(model(rel), mesh);
@@ -28,6 +28,8 @@ inline Mesh load_character(const std::string& rel, int poses = 8) {
   if (!clips.empty())
     OpenMeshSkinned::example_poses(mesh) =
         OpenMeshSkinned::sample_poses_evenly(OpenMeshSkinned::skeleton(mesh), clips[0], poses);
+  else
+    OpenMeshSkinned::use_bind_pose_only(mesh);
   return mesh;
 }
 

@@ -2,7 +2,7 @@
 // BaseDecimaterT::is_collapse_legal, on every halfedge, all the way down a decimation.
 #include "helpers.hh"
 
-#include <OpenMeshSkinned/Decimater/CollapseLegality.hh>
+#include <OpenMeshSkinned/Collapse/CollapseLegality.hh>
 #include <OpenMeshSkinned/Mesh/Procedural.hh>
 
 #include <OpenMesh/Tools/Decimater/BaseDecimaterT.hh>

@@ -1,7 +1,7 @@
-// The fold-over test of one collapse (Decimater/FoldOver.hh), on hand-made triangles and a small fan.
+// The fold-over test of one collapse (Collapse/FoldOver.hh), on hand-made triangles and a small fan.
 #include "helpers.hh"
 
-#include <OpenMeshSkinned/Decimater/FoldOver.hh>
+#include <OpenMeshSkinned/Collapse/FoldOver.hh>
 
 #include <cmath>
 

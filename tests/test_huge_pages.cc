@@ -1,5 +1,5 @@
-// Transparent huge pages for a whole program (Solver/HugePages.hh).
-#include <OpenMeshSkinned/Solver/HugePages.hh>
+// Transparent huge pages for a whole program (Platform/HugePages.hh).
+#include <OpenMeshSkinned/Platform/HugePages.hh>
 
 #include <gtest/gtest.h>
 

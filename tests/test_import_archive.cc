@@ -1,4 +1,5 @@
 // ImportArchive: what the isolated reader sends back is the import, exactly.
+#include <OpenMeshSkinned/IO/Import.hh>
 #include <OpenMeshSkinned/IO/ImportArchive.hh>
 #include <OpenMeshSkinned/Skin/Morph.hh>
 #include <OpenMeshSkinned/Skin/SkinProperties.hh>

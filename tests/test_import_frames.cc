@@ -1,6 +1,7 @@
 // Vertex-animated files (Quake MD2) and numbered mesh sequences read as frame animations.
 #include "helpers.hh"
 
+#include <OpenMeshSkinned/IO/Import.hh>
 #include <OpenMeshSkinned/IO/ImportFrames.hh>
 #include <OpenMeshSkinned/Skin/FrameAnimation.hh>
 

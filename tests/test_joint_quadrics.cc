@@ -1,6 +1,7 @@
 // JointQuadrics: the poses summed out must give the same error, vertex step and weight matrix as the
 // per-pose definitions, for any transforms, quadrics and weights.
 #include <OpenMeshSkinned/Solver/JointQuadrics.hh>
+#include <OpenMeshSkinned/Solver/SkinnedQuadricSolve.hh>
 
 #include <gtest/gtest.h>
 

@@ -2,8 +2,8 @@
 #include "fixtures.hh"
 #include "gltf_spec.hh"
 
+#include <OpenMeshSkinned/Collapse/MorphTransferT.hh>
 #include <OpenMeshSkinned/Decimater/ModSkinnedQuadricT.hh>
-#include <OpenMeshSkinned/Decimater/MorphTransferT.hh>
 #include <OpenMeshSkinned/IO/Import.hh>
 #include <OpenMeshSkinned/Mesh/Procedural.hh>
 #include <OpenMeshSkinned/Skin/LinearBlendSkinning.hh>

@@ -28,9 +28,22 @@ TEST(PoseCache, PosedPositionsAreTheSkinnedOnesAndEachPoseHasItsQuadrics) {
   }
 }
 
-TEST(PoseCache, AMeshWithoutExamplePosesUsesTheBindPose) {
+TEST(PoseCache, AMeshWithoutExamplePosesIsRefusedWithWhatToDo) {
   Mesh mesh = make_bending_cylinder(8, 8);
   example_poses(mesh).clear();
+  PoseCacheT<Mesh> cache(mesh);
+  try {
+    cache.build();
+    FAIL() << "a mesh without example poses was decimated in some pose nobody asked for";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("no example poses"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("use_bind_pose_only"), std::string::npos) << e.what();
+  }
+}
+
+TEST(PoseCache, TheBindPoseAloneWhenAskedFor) {
+  Mesh mesh = make_bending_cylinder(8, 8);
+  use_bind_pose_only(mesh);
   PoseCacheT<Mesh> cache(mesh);
   cache.build();
   ASSERT_EQ(cache.n_poses(), 1);

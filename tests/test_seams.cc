@@ -3,7 +3,7 @@
 
 #include <OpenMeshSkinned/Mesh/CornerAttributes.hh>
 #include <OpenMeshSkinned/Mesh/Seams.hh>
-#include <OpenMeshSkinned/Mesh/SkinnedMesh.hh>
+#include <OpenMeshSkinned/Skin/SkinnedMesh.hh>
 
 #include <algorithm>
 #include <cmath>

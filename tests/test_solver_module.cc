@@ -71,7 +71,7 @@ TEST(SolverModule, ARestSpaceModuleReplacesTheSkinnedQuadricAsTheEdgeModel) {
   using CI = OpenMesh::Decimater::CollapseInfoT<Mesh>;
   auto answers = [](bool with_poses, bool rest) {
     Mesh mesh = make_bending_cylinder(8, 16);
-    if (!with_poses) example_poses(mesh).clear();
+    if (!with_poses) use_bind_pose_only(mesh);
     OpenMesh::Decimater::DecimaterT<Mesh> dec(mesh);
     ModRestPoseQuadricT<Mesh>::Handle hr;
     ModSkinnedQuadricT<Mesh>::Handle hq;

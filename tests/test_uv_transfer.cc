@@ -1,7 +1,7 @@
-// Corner re-interpolation after a collapse (Decimater/CornerTransferT.hh, used as UvTransferT).
+// Corner re-interpolation after a collapse (Collapse/CornerTransferT.hh, used as UvTransferT).
 #include "helpers.hh"
 
-#include <OpenMeshSkinned/Decimater/UvTransferT.hh>
+#include <OpenMeshSkinned/Collapse/UvTransferT.hh>
 #include <OpenMeshSkinned/Mesh/CornerAttributes.hh>
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 // Every vertex attribute a viewer uses survives decimation: further UV sets, vertex colours (with their
-// seams), morph normal offsets (Mesh/CornerAttributes.hh, Decimater/CornerTransferT.hh, IO/ExportMesh.cc).
+// seams), morph normal offsets (Mesh/CornerAttributes.hh, Collapse/CornerTransferT.hh, IO/ExportMesh.cc).
 #include "fixtures.hh"
 #include "gltf_spec.hh"
 #include "run_command.hh"

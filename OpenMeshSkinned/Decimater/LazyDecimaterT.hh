@@ -1,8 +1,8 @@
 #pragma once
 /** \file LazyDecimaterT.hh */
 
-#include "OpenMeshSkinned/Decimater/CollapseLegality.hh"
-#include "OpenMeshSkinned/Decimater/DriverHints.hh"
+#include "OpenMeshSkinned/Collapse/CollapseLegality.hh"
+#include "OpenMeshSkinned/Collapse/DriverHints.hh"
 
 #include <OpenMesh/Tools/Decimater/BaseDecimaterT.hh>
 

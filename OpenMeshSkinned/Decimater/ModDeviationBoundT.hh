@@ -1,7 +1,7 @@
 #pragma once
 /** \file ModDeviationBoundT.hh */
 
-#include "OpenMeshSkinned/Decimater/FoldOver.hh"
+#include "OpenMeshSkinned/Collapse/FoldOver.hh"
 #include "OpenMeshSkinned/Decimater/SolverModuleT.hh"
 #include "OpenMeshSkinned/Mesh/ClosestPoint.hh"
 
@@ -27,8 +27,8 @@ namespace OpenMeshSkinned {
  *  Under LazyDecimaterT verdicts are asked right before each collapse, so the limit holds. DecimaterT asks
  *  when it prices, and a later collapse nearby can make a verdict stale: the shared solver therefore asks
  *  this module again about the collapses stored near v1 after each collapse and defers those it now
- *  refuses (StaleVerdictsT, as for the fold check). Without that, Testwuson to 10% with a limit of 0.5% of
- *  the diagonal ended at 1.29%; with it, 0.499%. bound() reports what the decimation really did either way.
+ *  refuses (StaleVerdictsT, as for the fold check); without that the limit slipped (bench/README.md, "Stale
+ *  verdicts under DecimaterT"). bound() reports what the decimation really did either way.
  *  The re-check needs a placing priority module (the solver's); with OpenMesh's own it is not made.
  *
  *  Example poses are skinned as the solver poses them (morph offsets are not part of them).

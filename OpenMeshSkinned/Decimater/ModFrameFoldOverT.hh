@@ -1,7 +1,7 @@
 #pragma once
 /** \file ModFrameFoldOverT.hh */
 
-#include "OpenMeshSkinned/Decimater/FoldOver.hh"
+#include "OpenMeshSkinned/Collapse/FoldOver.hh"
 #include "OpenMeshSkinned/Deform/ExampleFrames.hh"
 
 #include <OpenMesh/Tools/Decimater/ModBaseT.hh>

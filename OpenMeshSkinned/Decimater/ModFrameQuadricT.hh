@@ -2,9 +2,9 @@
 /** \file ModFrameQuadricT.hh */
 
 #include <OpenMesh/Tools/Decimater/ModBaseT.hh>
-#include "OpenMeshSkinned/Decimater/FoldOver.hh"
-#include "OpenMeshSkinned/Decimater/MorphTransferT.hh"
-#include "OpenMeshSkinned/Decimater/UvTransferT.hh"
+#include "OpenMeshSkinned/Collapse/FoldOver.hh"
+#include "OpenMeshSkinned/Collapse/MorphTransferT.hh"
+#include "OpenMeshSkinned/Collapse/UvTransferT.hh"
 #include "OpenMeshSkinned/Deform/ExampleFrames.hh"
 #include "OpenMeshSkinned/Solver/VertexQuadrics.hh"
 

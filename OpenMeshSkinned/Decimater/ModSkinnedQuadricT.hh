@@ -18,11 +18,11 @@ namespace OpenMeshSkinned {
  *  set_error_per_area(true) divides that energy by the area the edge's quadrics stand for: the priority is
  *  then a mean squared distance (length^2), as meshoptimizer normalises its quadrics. The paper's energy
  *  makes a small sharp feature (a horn's tip) cheap because its faces are small, whatever its distance; per
- *  area it costs what its distance says. Measured on held-out frames under LazyDecimaterT (bench/README.md),
- *  per area lowers the worst case a lot (Testwuson at 25%: Hausdorff 0.86% instead of 1.99% of the
- *  diagonal; 2.35% instead of 3.45% at 10%) and the RMS at 25% and 10% by 7-9%, for 4% more RMS at 50%; the
- *  command-line tool uses it. Under DecimaterT, whose stale-verdict handling locks and defers vertices, it
- *  measured worse at 50% and 25% (Hausdorff 2.14% against 1.83% at 25%): use it with LazyDecimaterT.
+ *  area it costs what its distance says. Measured on held-out frames under LazyDecimaterT, per area lowers
+ *  the worst case a lot and the RMS at the coarser levels, for a little more RMS at the finest (bench/README.md,
+ *  "Defaults chosen by measurement"); the command-line tool uses it. Under DecimaterT, whose stale-verdict
+ *  handling locks and defers vertices, it measured worse at 50% and 25% (the same section): use it with
+ *  LazyDecimaterT.
  *
  *  When a collapse happens, the surviving vertex moves to the optimal rest position and takes the
  *  optimal weights, its corner UVs (per-halfedge texcoords, when the mesh has them) are re-interpolated

@@ -41,7 +41,8 @@ public:
   int max_influences() const { return max_influences_; }
 
   /// How the cap is met when the optimum uses more joints (default CapStrategy::Greedy: it kept the posed
-  /// surface closer than the paper's TopN on every real test character and cap, see bench/README.md).
+  /// surface closer than the paper's TopN on every real test character and cap, see bench/README.md,
+  /// "omsk-bench: the papers' workloads").
   void set_strategy(CapStrategy s) {
     strategy_ = s;
     this->settings_changed();

@@ -20,12 +20,12 @@ FramePoints rest_points(const Mesh& mesh) {
   return p;
 }
 
-/// Posed positions in each example pose; the rest positions alone when the mesh has no example pose.
+/// Posed positions in each example pose (std::invalid_argument when the mesh has none:
+/// required_example_poses()).
 template <typename Mesh>
 std::vector<FramePoints> example_frame_points(const Mesh& mesh) {
   std::vector<FramePoints> out;
-  for (const Pose& pose : example_poses(mesh)) out.push_back(skin_positions(mesh, pose));
-  if (out.empty()) out.push_back(rest_points(mesh));
+  for (const Pose& pose : required_example_poses(mesh)) out.push_back(skin_positions(mesh, pose));
   return out;
 }
 

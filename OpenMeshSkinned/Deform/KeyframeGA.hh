@@ -41,7 +41,7 @@ private:
 };
 
 struct KeyframeGaSettings {
-  size_t population = 200;  ///< the report uses 1000; 200 finds the same answers on our tests, 5x sooner
+  size_t population = 200;  ///< the report uses 1000; 200 finds the same answers on our tests, sooner
   double crossover = 0.95;
   double mutation = 0.05;
   double shift_mutation = 0.05;

@@ -1,11 +1,12 @@
 #include "OpenMeshSkinned/Deform/NearRigidSegmentation.hh"
 
-#include <Eigen/Sparse>
+#include "OpenMeshSkinned/Deform/DualGraph.hh"
 
 #include <boost/graph/adjacency_list.hpp>
 #include <boost/graph/boykov_kolmogorov_max_flow.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <map>
@@ -16,132 +17,12 @@ namespace OpenMeshSkinned {
 
 namespace {
 
-struct Arc {
-  int to;
-  double dis;     // eq. 5
-  double d_norm;  // D / avg(D)
-  double edge;    // length of the shared edge, rest shape
-};
-
-struct DualGraph {
-  std::vector<std::vector<Arc>> arcs;  // by face index
-  std::vector<double> area;
-};
-
-DualGraph dual_graph(const SkinnedMesh& mesh, const FramePoints& ref, const FaceGradients<SkinnedMesh>& g,
-                     double delta) {
-  const std::vector<double> D = deformation_distances(mesh, ref, g, true);
-  std::vector<double> geod(mesh.n_edges(), 0.0);  // centroid distance across each interior edge
-  double sum_geod = 0.0;
-  std::vector<double> interior;
-  for (auto eh : mesh.edges())
-    if (!mesh.is_boundary(eh)) {
-      geod[eh.idx()] = centroid_distance(mesh, ref, mesh.face_handle(mesh.halfedge_handle(eh, 0)),
-                                         mesh.face_handle(mesh.halfedge_handle(eh, 1)));
-      sum_geod += geod[eh.idx()];
-      interior.push_back(D[eh.idx()]);
-    }
-  const size_t n = interior.size();
-  const double avg_geod = n && sum_geod > 0.0 ? sum_geod / n : 1.0;
-  // avg(D) of eq. 5 with the largest 1 % clipped: a few slivers, whose gradients blow up (a vertex
-  // quantised onto its neighbour's line in some frame), would otherwise make the average hundreds of times
-  // the typical distance and every other edge look rigid.
-  double avg_d = 0.0;
-  if (n) {
-    std::vector<double> sorted = interior;
-    const size_t k = std::min(n - 1, size_t(0.99 * double(n)));
-    std::nth_element(sorted.begin(), sorted.begin() + long(k), sorted.end());
-    const double clip = sorted[k];
-    for (double x : interior) avg_d += std::min(x, clip) / double(n);
-  }
-  DualGraph G;
-  G.arcs.resize(mesh.n_faces());
-  G.area.assign(mesh.n_faces(), 0.0);
-  for (auto fh : mesh.faces()) {
-    auto fv = mesh.cfv_iter(fh);
-    const Eigen::Vector3d& a = ref[(fv++)->idx()];
-    const Eigen::Vector3d& b = ref[(fv++)->idx()];
-    const Eigen::Vector3d& c = ref[fv->idx()];
-    G.area[fh.idx()] = 0.5 * (b - a).cross(c - a).norm();
-  }
-  for (auto eh : mesh.edges()) {
-    if (mesh.is_boundary(eh)) continue;
-    const auto fa = mesh.face_handle(mesh.halfedge_handle(eh, 0)), fb = mesh.face_handle(mesh.halfedge_handle(eh, 1));
-    const double d_norm = avg_d > 0.0 ? D[eh.idx()] / avg_d : 0.0;
-    const double dis = delta * geod[eh.idx()] / avg_geod + (1.0 - delta) * d_norm;
-    const auto heh = mesh.halfedge_handle(eh, 0);
-    const double edge = (ref[mesh.to_vertex_handle(heh).idx()] - ref[mesh.from_vertex_handle(heh).idx()]).norm();
-    G.arcs[fa.idx()].push_back({fb.idx(), dis, d_norm, edge});
-    G.arcs[fb.idx()].push_back({fa.idx(), dis, d_norm, edge});
-  }
-  return G;
-}
-
-// Shortest distances from \p sources; \p origin[f] = the source that reaches f first (-1: unreachable).
-std::vector<double> shortest_paths(const DualGraph& G, const std::vector<int>& sources,
-                                   std::vector<int>* origin = nullptr) {
-  const double inf = std::numeric_limits<double>::infinity();
-  std::vector<double> dist(G.arcs.size(), inf);
-  if (origin) origin->assign(G.arcs.size(), -1);
-  using Item = std::pair<double, int>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> q;
-  for (int s : sources) {
-    dist[s] = 0.0;
-    if (origin) (*origin)[s] = s;
-    q.push({0.0, s});
-  }
-  while (!q.empty()) {
-    const auto [d, f] = q.top();
-    q.pop();
-    if (d > dist[f]) continue;
-    for (const Arc& a : G.arcs[f])
-      if (d + a.dis < dist[a.to]) {
-        dist[a.to] = d + a.dis;
-        if (origin) (*origin)[a.to] = (*origin)[f];
-        q.push({dist[a.to], a.to});
-      }
-  }
-  return dist;
-}
-
-// The influence region of feature face \p p: the faces of B around it where the harmonic field that is 1 at
-// p and 0 on A reaches 0.01 (conductance 1 / Dis, so that a bending edge holds the field back).
-std::vector<int> influence_region(const DualGraph& G, const std::vector<char>& in_a, int p) {
-  std::vector<int> comp = {p}, index(G.arcs.size(), -1);
-  index[p] = 0;
-  bool touches_a = false;
-  for (size_t i = 0; i < comp.size(); ++i)
-    for (const Arc& a : G.arcs[comp[i]]) {
-      if (in_a[a.to])
-        touches_a = true;
-      else if (index[a.to] < 0)
-        index[a.to] = int(comp.size()), comp.push_back(a.to);
-    }
-  if (!touches_a || comp.size() == 1) return comp;
-  const long n = long(comp.size()) - 1;  // unknowns: comp without p
-  std::vector<Eigen::Triplet<double>> t;
-  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
-  for (size_t i = 1; i < comp.size(); ++i) {
-    double diag = 0.0;
-    for (const Arc& a : G.arcs[comp[i]]) {
-      const double w = 1.0 / std::max(a.dis, 1e-12);
-      diag += w;
-      if (a.to == p)
-        rhs[long(i - 1)] += w;
-      else if (!in_a[a.to])
-        t.emplace_back(long(i - 1), index[a.to] - 1, -w);
-    }
-    t.emplace_back(long(i - 1), long(i - 1), diag);
-  }
-  Eigen::SparseMatrix<double> L(n, n);
-  L.setFromTriplets(t.begin(), t.end());
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(L);
-  const Eigen::VectorXd u = solver.solve(rhs);
-  std::vector<int> region = {p};
-  for (size_t i = 1; i < comp.size(); ++i)
-    if (solver.info() != Eigen::Success || u[long(i - 1)] >= 0.01) region.push_back(comp[i]);
-  return region;
-}
+using detail::Arc;
+using detail::dual_graph;
+using detail::DualGraph;
+using detail::influence_region;
+using detail::pieces;
+using detail::shortest_paths;
 
 // Area-weighted average deformation gradient of \p faces, per frame (Lee 3.2: a region's deformation).
 std::vector<Eigen::Matrix3d> average_gradient(const FaceGradients<SkinnedMesh>& g, const DualGraph& G,
@@ -156,21 +37,6 @@ std::vector<Eigen::Matrix3d> average_gradient(const FaceGradients<SkinnedMesh>& 
   for (auto& m : N) m = area > 0.0 ? Eigen::Matrix3d(m / area) : Eigen::Matrix3d::Identity();
   if (area_out) *area_out = area;
   return N;
-}
-
-// Connected pieces of the faces labelled \p label (neighbours across edges).
-std::vector<std::vector<int>> pieces(const DualGraph& G, const std::vector<int>& part, int label) {
-  std::vector<std::vector<int>> out;
-  std::vector<char> seen(part.size(), 0);
-  for (size_t f = 0; f < part.size(); ++f) {
-    if (part[f] != label || seen[f]) continue;
-    out.emplace_back(1, int(f));
-    seen[f] = 1;
-    for (size_t i = 0; i < out.back().size(); ++i)
-      for (const Arc& a : G.arcs[out.back()[i]])
-        if (part[a.to] == label && !seen[a.to]) seen[a.to] = 1, out.back().push_back(a.to);
-  }
-  return out;
 }
 
 // 3.4: the boundary between two neighbouring parts re-cut by a minimum cut (Boykov-Kolmogorov max flow)
@@ -289,23 +155,21 @@ void refine_by_average_distance(const DualGraph& G, const std::vector<int>& feat
   }
 }
 
-}  // namespace
+// 3.2: the feature faces, and the part each starts or joins.
+struct Features {
+  std::vector<int> faces;
+  std::vector<int> part;
+};
 
-Segmentation segment_near_rigid(const SkinnedMesh& mesh, const FramePoints& ref, const std::vector<FramePoints>& frames,
-                                const SegmentationSettings& s) {
-  const FaceGradients<SkinnedMesh> g(mesh, ref, frames);
-  const DualGraph G = dual_graph(mesh, ref, g, s.delta);
-  const size_t nf = mesh.n_faces();
+Features find_features(const FaceGradients<SkinnedMesh>& g, const DualGraph& G, const SegmentationSettings& s) {
+  const size_t nf = G.arcs.size();
   double total_area = 0.0;
   for (double a : G.area) total_area += a;
-
-  // 3.2: feature faces and the parts they start.
   std::vector<char> in_a(nf, 0);
   for (size_t f = 0; f < nf; ++f)
     for (const Arc& a : G.arcs[f])
       if (a.dis > s.epsilon) in_a[f] = 1;
-  Segmentation out;
-  std::vector<int> feature_part;
+  Features out;
   std::vector<std::vector<Eigen::Matrix3d>> part_gradient;
   std::vector<double> part_area;
   // A region becomes a part of its own or joins the part whose deformation is within gamma of its own.
@@ -328,8 +192,8 @@ Segmentation segment_near_rigid(const SkinnedMesh& mesh, const FramePoints& ref,
         part_gradient[join][t] = (part_area[join] * part_gradient[join][t] + r_area * N[t]) / w;
       part_area[join] = w;
     }
-    out.feature_faces.push_back(p);
-    feature_part.push_back(join);
+    out.faces.push_back(p);
+    out.part.push_back(join);
     for (int f : R) in_a[f] = 1;
   };
   // Pieces of the mesh where nothing bends (no face of A reaches them: a separate rigid accessory, or a
@@ -358,41 +222,51 @@ Segmentation segment_near_rigid(const SkinnedMesh& mesh, const FramePoints& ref,
     if (area < s.min_region_area * total_area) break;
     add_region(p, R);
   }
-  if (out.feature_faces.empty()) {
-    out.feature_faces.push_back(0);
-    feature_part.push_back(0);
+  if (out.faces.empty()) {
+    out.faces.push_back(0);
+    out.part.push_back(0);
   }
+  return out;
+}
 
-  // 3.3: nearest feature face (eq. 6); a part in pieces is split (pieces with feature faces) or absorbed.
+// A piece of part \p label that holds no feature face goes to the neighbouring part it shares the most
+// edges with.
+void absorb_piece(const DualGraph& G, const std::vector<int>& piece, int label, std::vector<int>& part) {
+  std::map<int, int> votes;
+  for (int f : piece)
+    for (const Arc& a : G.arcs[f])
+      if (part[a.to] != label && part[a.to] >= 0) ++votes[part[a.to]];
+  if (votes.empty()) return;
+  const int to =
+      std::max_element(votes.begin(), votes.end(), [](auto& x, auto& y) { return x.second < y.second; })->first;
+  for (int f : piece) part[f] = to;
+}
+
+// 3.3: each face to the part of its nearest feature face (eq. 6), refined by eq. 7; a part in pieces is split
+// (pieces with feature faces become parts of their own) or absorbed (pieces without).
+std::vector<int> assign_parts(const DualGraph& G, Features& ft) {
+  const size_t nf = G.arcs.size();
   std::vector<int> part(nf, 0);
   for (int iter = 0; iter < 10; ++iter) {
     std::vector<int> origin;
-    shortest_paths(G, out.feature_faces, &origin);
+    shortest_paths(G, ft.faces, &origin);
     std::map<int, int> part_of_feature;
-    for (size_t i = 0; i < out.feature_faces.size(); ++i) part_of_feature[out.feature_faces[i]] = feature_part[i];
+    for (size_t i = 0; i < ft.faces.size(); ++i) part_of_feature[ft.faces[i]] = ft.part[i];
     for (size_t f = 0; f < nf; ++f) part[f] = origin[f] < 0 ? -1 : part_of_feature[origin[f]];
-    const int n_parts = *std::max_element(feature_part.begin(), feature_part.end()) + 1;
-    refine_by_average_distance(G, out.feature_faces, feature_part, n_parts, part);
+    const int n_parts = *std::max_element(ft.part.begin(), ft.part.end()) + 1;
+    refine_by_average_distance(G, ft.faces, ft.part, n_parts, part);
     bool split = false;
     for (int label = 0; label < n_parts; ++label) {
-      const auto ps = pieces(G, part, label);
       bool first_with_features = true;
-      for (const auto& piece : ps) {
+      for (const auto& piece : pieces(G, part, label)) {
         std::vector<size_t> features;
-        for (size_t i = 0; i < out.feature_faces.size(); ++i)
-          if (std::find(piece.begin(), piece.end(), out.feature_faces[i]) != piece.end()) features.push_back(i);
+        for (size_t i = 0; i < ft.faces.size(); ++i)
+          if (std::find(piece.begin(), piece.end(), ft.faces[i]) != piece.end()) features.push_back(i);
         if (features.empty()) {
-          std::map<int, int> votes;
-          for (int f : piece)
-            for (const Arc& a : G.arcs[f])
-              if (part[a.to] != label && part[a.to] >= 0) ++votes[part[a.to]];
-          if (votes.empty()) continue;
-          const int to =
-              std::max_element(votes.begin(), votes.end(), [](auto& x, auto& y) { return x.second < y.second; })->first;
-          for (int f : piece) part[f] = to;
+          absorb_piece(G, piece, label, part);
         } else if (!first_with_features) {
-          const int fresh = *std::max_element(feature_part.begin(), feature_part.end()) + 1;
-          for (size_t i : features) feature_part[i] = fresh;
+          const int fresh = *std::max_element(ft.part.begin(), ft.part.end()) + 1;
+          for (size_t i : features) ft.part[i] = fresh;
           split = true;
         } else {
           first_with_features = false;
@@ -401,17 +275,29 @@ Segmentation segment_near_rigid(const SkinnedMesh& mesh, const FramePoints& ref,
     }
     if (!split) break;
   }
+  return part;
+}
+
+}  // namespace
+
+Segmentation segment_near_rigid(const SkinnedMesh& mesh, const FramePoints& ref, const std::vector<FramePoints>& frames,
+                                const SegmentationSettings& s) {
+  const FaceGradients<SkinnedMesh> g(mesh, ref, frames);
+  const DualGraph G = dual_graph(mesh, ref, g, s.delta);
+  Features ft = find_features(g, G, s);
+  std::vector<int> part = assign_parts(G, ft);
   // Faces no feature face reaches (a piece of the mesh with none) form parts of their own.
-  {
-    int fresh = -2;
-    for (const auto& piece : pieces(G, part, -1)) {
-      for (int x : piece) part[x] = fresh;
-      --fresh;
-    }
+  int fresh = -2;
+  for (const auto& piece : pieces(G, part, -1)) {
+    for (int x : piece) part[x] = fresh;
+    --fresh;
   }
   smooth_boundaries(G, part, s.alpha, s.smoothing_hops);
+  Segmentation out;
+  out.feature_faces = ft.faces;
   // Labels in order of first appearance, so that equal segmentations compare equal.
   std::map<int, int> order;
+  const size_t nf = mesh.n_faces();
   out.part.assign(nf, 0);
   for (size_t f = 0; f < nf; ++f) {
     if (!order.count(part[f])) order[part[f]] = int(order.size());

@@ -30,7 +30,7 @@
  */
 
 #include "OpenMeshSkinned/Deform/DeformationAnalysis.hh"
-#include "OpenMeshSkinned/Mesh/SkinnedMesh.hh"
+#include "OpenMeshSkinned/Skin/SkinnedMesh.hh"
 
 #include <vector>
 

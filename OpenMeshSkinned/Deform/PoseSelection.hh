@@ -7,8 +7,8 @@
  */
 
 #include "OpenMeshSkinned/Deform/KeyframeGA.hh"
-#include "OpenMeshSkinned/Mesh/SkinnedMesh.hh"
 #include "OpenMeshSkinned/Skin/PoseSchedule.hh"
+#include "OpenMeshSkinned/Skin/SkinnedMesh.hh"
 
 #include <vector>
 

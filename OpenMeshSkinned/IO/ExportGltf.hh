@@ -7,7 +7,7 @@
  */
 
 #include "OpenMeshSkinned/IO/IOError.hh"
-#include "OpenMeshSkinned/Mesh/SkinnedMesh.hh"
+#include "OpenMeshSkinned/Skin/SkinnedMesh.hh"
 
 #include <string>
 #include <utility>

@@ -5,7 +5,7 @@
  */
 
 #include "OpenMeshSkinned/IO/GltfBuffer.hh"
-#include "OpenMeshSkinned/Mesh/SkinnedMesh.hh"
+#include "OpenMeshSkinned/Skin/SkinnedMesh.hh"
 
 #include <string>
 #include <vector>

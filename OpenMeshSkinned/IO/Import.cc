@@ -2,7 +2,6 @@
 
 #include "OpenMeshSkinned/IO/GltfRepair.hh"
 #include "OpenMeshSkinned/IO/GltfValueCheck.hh"
-#include "OpenMeshSkinned/IO/ImportFrames.hh"
 #include "OpenMeshSkinned/IO/ImportGeometry.hh"
 #include "OpenMeshSkinned/IO/ImportMaterial.hh"
 #include "OpenMeshSkinned/IO/ImportScene.hh"
@@ -10,6 +9,7 @@
 #include "OpenMeshSkinned/IO/IsolatedImport.hh"
 #include "OpenMeshSkinned/IO/PrintableText.hh"
 #include "OpenMeshSkinned/IO/ReaderLog.hh"
+#include "OpenMeshSkinned/IO/StoredFrames.hh"
 #include "OpenMeshSkinned/Mesh/NonManifold.hh"
 #include "OpenMeshSkinned/Skin/Morph.hh"
 #include "OpenMeshSkinned/Skin/SkinProperties.hh"
@@ -193,7 +193,7 @@ ImportReport import_skinned(const std::string& path, SkinnedMesh& mesh, const Im
   if (fs::is_directory(path, ec)) throw fail("is a directory, not a file");
   if (fs::file_size(path, ec) == 0) throw fail("file is empty");
   // The child repairs and decodes too: a decoder reads sizes and streams from the file, as a reader does.
-  if (opt.isolate) return import_isolated(path, mesh, opt);
+  if (opt.isolate) return import_isolated(path, mesh, opt, &detail::import_file);
   return detail::import_file(path, mesh, opt);
 }
 
@@ -248,7 +248,6 @@ ImportReport detail::import_scene(const std::string& path, const std::string& re
   finish_mesh(mesh, rep, path);
   read_clips(scene, sn, joints, instances, target_base, mesh, rep.warnings);
   rep.clips = clips(mesh).size();
-  example_poses(mesh) = {Pose::identity(skeleton(mesh).size())};
   check_input(mesh, path, rep.warnings);
   for (const std::string& m : log.data_loss()) rep.warnings.push_back("the reader dropped data: " + m);
   try {

@@ -1,5 +1,6 @@
 #include "OpenMeshSkinned/IO/ImportArchive.hh"
 
+#include "OpenMeshSkinned/IO/IOError.hh"
 #include "OpenMeshSkinned/Mesh/CornerAttributes.hh"
 #include "OpenMeshSkinned/Skin/Morph.hh"
 #include "OpenMeshSkinned/Skin/SkinProperties.hh"

@@ -5,7 +5,8 @@
  *  carries everything import_skinned() produces, exactly (bit-identical numbers).
  */
 
-#include "OpenMeshSkinned/IO/Import.hh"
+#include "OpenMeshSkinned/IO/ImportOptions.hh"
+#include "OpenMeshSkinned/Skin/SkinnedMesh.hh"
 
 #include <string>
 

@@ -5,19 +5,14 @@
  *  ...; any format assimp reads), the same mesh in each.
  */
 
-#include "OpenMeshSkinned/IO/Import.hh"
+#include "OpenMeshSkinned/IO/ImportOptions.hh"
+#include "OpenMeshSkinned/IO/StoredFrames.hh"
+#include "OpenMeshSkinned/Skin/SkinnedMesh.hh"
 
 #include <string>
 #include <vector>
 
 namespace OpenMeshSkinned {
-
-/// Frames stored in a vertex-animated file, from its header (MD2, MD3, MDL); 1 for any other file.
-size_t stored_frame_count(const std::string& path);
-
-/** The numbered files \p path belongs to: for "dir/walk_0007.obj", every "dir/walk_<digits>.obj", in the
- *  order of their numbers. Just {path} when its name does not end in a number. */
-std::vector<std::string> numbered_sequence(const std::string& path);
 
 /** Reads a frame animation into \p mesh: the stored frames of \p files[0] when it is the only file, else
  *  one frame per file. Each frame is read like import_skinned() (materials, textures and UVs come from

@@ -1,5 +1,6 @@
 #include "OpenMeshSkinned/IO/ImportGeometry.hh"
 
+#include "OpenMeshSkinned/IO/IOError.hh"
 #include "OpenMeshSkinned/Mesh/NonManifold.hh"
 
 #include <Eigen/LU>

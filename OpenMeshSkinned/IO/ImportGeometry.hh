@@ -6,11 +6,12 @@
  *  Internal to the importer (Import.cc).
  */
 
-#include "OpenMeshSkinned/IO/Import.hh"
+#include "OpenMeshSkinned/IO/ImportOptions.hh"
 #include "OpenMeshSkinned/IO/ImportScene.hh"
 #include "OpenMeshSkinned/Mesh/CornerAttributes.hh"
 #include "OpenMeshSkinned/Skin/Morph.hh"
 #include "OpenMeshSkinned/Skin/SkinProperties.hh"
+#include "OpenMeshSkinned/Skin/SkinnedMesh.hh"
 
 #include <memory>
 

@@ -5,8 +5,8 @@
  *  Internal to the importer (Import.cc); the public entry point is import_skinned().
  */
 
-#include "OpenMeshSkinned/Mesh/SkinnedMesh.hh"
 #include "OpenMeshSkinned/Skin/Skeleton.hh"
+#include "OpenMeshSkinned/Skin/SkinnedMesh.hh"
 
 #include <assimp/scene.h>
 

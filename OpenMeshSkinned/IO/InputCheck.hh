@@ -8,8 +8,8 @@
  */
 
 #include "OpenMeshSkinned/IO/IOError.hh"
-#include "OpenMeshSkinned/Mesh/SkinnedMesh.hh"
 #include "OpenMeshSkinned/Skin/Skeleton.hh"
+#include "OpenMeshSkinned/Skin/SkinnedMesh.hh"
 
 #include <string>
 #include <vector>

@@ -1,5 +1,6 @@
 #include "OpenMeshSkinned/IO/IsolatedImport.hh"
 
+#include "OpenMeshSkinned/IO/IOError.hh"
 #include "OpenMeshSkinned/IO/ImportArchive.hh"
 #include "OpenMeshSkinned/IO/PrintableText.hh"
 
@@ -54,7 +55,7 @@ bool looks_like_oom(const std::string& message) {
   return message.find("bad_alloc") != std::string::npos || message.find("out of memory") != std::string::npos;
 }
 
-[[noreturn]] void run_child(int fd, int err_fd, const std::string& path, const ImportOptions& opt) {
+[[noreturn]] void run_child(int fd, int err_fd, const std::string& path, const ImportOptions& opt, FileReader read) {
   // What the reader or the C library prints (glibc's "double free or corruption" above a crash) goes to
   // the parent, which shows it only when asked: the user sees one line.
   ::dup2(err_fd, STDERR_FILENO);
@@ -76,7 +77,7 @@ bool looks_like_oom(const std::string& message) {
   std::string out;
   try {
     SkinnedMesh mesh;
-    const ImportReport rep = detail::import_file(path, mesh, opt);
+    const ImportReport rep = read(path, mesh, opt);
     out.assign(1, kOk);
     append_import(mesh, rep, out);
   } catch (const std::bad_alloc&) {
@@ -91,7 +92,7 @@ bool looks_like_oom(const std::string& message) {
 
 }  // namespace
 
-ImportReport import_isolated(const std::string& path, SkinnedMesh& mesh, const ImportOptions& opt) {
+ImportReport import_isolated(const std::string& path, SkinnedMesh& mesh, const ImportOptions& opt, FileReader read) {
   auto fail = [&path](const std::string& what) { return IOError(path + ": " + what); };
   // The child's scratch files (a repaired or decoded glTF copy) go into a folder of the parent's, removed
   // here whatever becomes of the child: a killed or crashed child cleans up nothing itself.
@@ -120,7 +121,7 @@ ImportReport import_isolated(const std::string& path, SkinnedMesh& mesh, const I
     ::close(fds[0]);
     ::close(err[0]);
     ::setenv("TMPDIR", scratch.c_str(), 1);
-    run_child(fds[1], err[1], path, opt);
+    run_child(fds[1], err[1], path, opt, read);
   }
   ::close(fds[1]);
   ::close(err[1]);

@@ -3,8 +3,8 @@
 // surface distances in percent of the original's rest-pose bounding-box diagonal.
 
 #include <OpenMeshSkinned/Lod/LodProgress.hh>
-#include <OpenMeshSkinned/Mesh/SkinnedMesh.hh>
 #include <OpenMeshSkinned/Skin/Skeleton.hh>
+#include <OpenMeshSkinned/Skin/SkinnedMesh.hh>
 
 #include <vector>
 

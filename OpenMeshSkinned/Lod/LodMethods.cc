@@ -129,6 +129,86 @@ size_t fold_fallbacks(Decimater& dec, Handles& h) {
   return h.fold_over.is_valid() ? dec.module(h.fold_over).solver().stats().fold_fallbacks : 0;
 }
 
+// The method's modules, then the ones the options add, set up.
+void add_modules(Decimater& dec, Handles& h, const MethodModules& m, const LodOptions& opt, const std::string& method,
+                 const LodCallbacks& callbacks, double diagonal) {
+  m.add(dec, h);
+  // The frame methods' skins were capped up front: the cap module would only bring in the skinned solver.
+  if (!h.frame_fold.is_valid() && !h.frames.is_valid()) {
+    dec.add(h.cap);
+    dec.module(h.cap).set_max_influences(opt.max_influences);
+  }
+  if (opt.joint_guard > 0.0) {
+    dec.add(h.guard);
+    dec.module(h.guard).set_tau(opt.joint_guard);
+  }
+  if (h.skinned.is_valid()) dec.module(h.skinned).set_error_per_area(!opt.energy_error);
+  // The bound needs the shared solver's placement and poses: the frame methods place vertices themselves.
+  if (opt.max_error > 0.0) {
+    if (!h.frame_fold.is_valid() && !h.frames.is_valid()) {
+      dec.add(h.bound);
+      dec.module(h.bound).set_max_deviation(opt.max_error / 100.0 * diagonal);
+    } else {
+      callbacks.warn("--max-error does not apply to --method " + method +
+                     " (it places vertices itself); its LODs are not bounded");
+    }
+  }
+  if (opt.threads > 0) dec.set_threads(opt.threads);
+}
+
+void set_fold(Decimater& dec, Handles& h, double angle, bool fallback) {
+  if (h.fold_over.is_valid()) {
+    dec.module(h.fold_over).set_max_angle(angle);
+    dec.module(h.fold_over).set_fallback_placement(fallback);
+  }
+  if (h.frame_fold.is_valid()) dec.module(h.frame_fold).set_max_angle(angle);
+  if (h.frames.is_valid()) dec.module(h.frames).set_max_fold_angle(angle);
+}
+
+// Reach the requested count: when every collapse left folds a face by more than 90 degrees in some
+// pose, make such collapses at the cheapest placement that folds nothing, then allow a larger turn step
+// by step (and say so), unless --strict-fold, or --max-error, which puts the bound before the count
+// (what stopped may be the bound: folds would buy nothing but folds). Returns the collapses made.
+size_t relax_folds(Decimater& dec, Handles& h, Mesh& mesh, size_t target, const LodOptions& opt,
+                   const Progress& progress, LodReport& lod) {
+  if (opt.strict_fold || h.bound.is_valid() ||
+      !(h.fold_over.is_valid() || h.frame_fold.is_valid() || h.frames.is_valid()))
+    return 0;
+  size_t collapses = 0;
+  const size_t fallbacks_before = fold_fallbacks(dec, h);
+  for (double angle : {90.0, 120.0, 150.0, 175.0}) {
+    const size_t now = live_faces(mesh);
+    // Nothing to relax when no collapse at all is left that keeps the mesh manifold.
+    if (now <= target || !dec.topology_allows_a_collapse()) break;
+    // At 90 degrees only the placements change: the cheapest one that folds nothing.
+    if (angle == 90.0 && !h.fold_over.is_valid()) continue;
+    set_fold(dec, h, angle, true);
+    collapses += dec.decimate_to_faces(0, target + (mesh.n_faces() - now));
+    if (progress.cancelled()) throw LodCancelled();
+    lod.fold_limit = angle;
+  }
+  lod.fold_fallbacks = fold_fallbacks(dec, h) - fallbacks_before;
+  set_fold(dec, h, 90.0, false);
+  return collapses;
+}
+
+// A level's mesh without the deleted elements, at its own size, and what the report says of it.
+void snapshot(Mesh& snap, LodReport& lod) {
+  snap.garbage_collection();
+  for (auto vh : snap.vertices()) snap.status(vh).set_locked(false);
+  // Garbage collection keeps the arrays' capacity (the full mesh's, 62 MB on the human): a copy holds
+  // only the level's size, and clear() frees the arrays before the copy is assigned back.
+  {
+    const Mesh compact = snap;
+    snap.clear();
+    snap = compact;
+  }
+  lod.faces = snap.n_faces();
+  if (lod.at_floor) lod.pieces = count_pieces(snap);
+  lod.vertices = snap.n_vertices();
+  lod.max_influences = max_influences_of(snap);
+}
+
 }  // namespace
 
 int max_influences_of(const Mesh& mesh) {
@@ -191,29 +271,8 @@ std::vector<LodLevel> decimate_chain(const Mesh& input, const std::vector<Pose>&
   // Held in an optional so that the solver's caches are freed before the last snapshot is taken.
   std::optional<Decimater> dec(std::in_place, mesh);
   Handles h;
-  it->add(*dec, h);
-  // The frame methods' skins were capped above: the cap module would only bring in the skinned solver.
-  if (!h.frame_fold.is_valid() && !h.frames.is_valid()) {
-    dec->add(h.cap);
-    dec->module(h.cap).set_max_influences(opt.max_influences);
-  }
-  if (opt.joint_guard > 0.0) {
-    dec->add(h.guard);
-    dec->module(h.guard).set_tau(opt.joint_guard);
-  }
-  if (h.skinned.is_valid()) dec->module(h.skinned).set_error_per_area(!opt.energy_error);
-  // The bound needs the shared solver's placement and poses: the frame methods place vertices themselves.
   const double diagonal = bbox_diagonal(mesh);
-  if (opt.max_error > 0.0) {
-    if (!h.frame_fold.is_valid() && !h.frames.is_valid()) {
-      dec->add(h.bound);
-      dec->module(h.bound).set_max_deviation(opt.max_error / 100.0 * diagonal);
-    } else {
-      callbacks.warn("--max-error does not apply to --method " + method +
-                     " (it places vertices itself); its LODs are not bounded");
-    }
-  }
-  if (opt.threads > 0) dec->set_threads(opt.threads);
+  add_modules(*dec, h, *it, opt, method, callbacks, diagonal);
   if (!dec->initialize()) throw std::runtime_error("the decimater did not initialize");
   Progress progress(callbacks, n_vertices_in - targets.back() / 2);
   dec->set_observer(&progress);
@@ -227,35 +286,7 @@ std::vector<LodLevel> decimate_chain(const Mesh& input, const std::vector<Pose>&
     collapses += dec->decimate_to_faces(0, targets[i] + (mesh.n_faces() - live_faces(mesh)));
     if (progress.cancelled()) throw LodCancelled();
     LodReport lod;
-    // Reach the requested count: when every collapse left folds a face by more than 90 degrees in some
-    // pose, make such collapses at the cheapest placement that folds nothing, then allow a larger turn step
-    // by step (and say so), unless --strict-fold, or --max-error, which puts the bound before the count
-    // (what stopped may be the bound: folds would buy nothing but folds).
-    auto set_fold = [&](double angle, bool fallback) {
-      if (h.fold_over.is_valid()) {
-        dec->module(h.fold_over).set_max_angle(angle);
-        dec->module(h.fold_over).set_fallback_placement(fallback);
-      }
-      if (h.frame_fold.is_valid()) dec->module(h.frame_fold).set_max_angle(angle);
-      if (h.frames.is_valid()) dec->module(h.frames).set_max_fold_angle(angle);
-    };
-    if (!opt.strict_fold && !h.bound.is_valid() &&
-        (h.fold_over.is_valid() || h.frame_fold.is_valid() || h.frames.is_valid())) {
-      const size_t fallbacks_before = fold_fallbacks(*dec, h);
-      for (double angle : {90.0, 120.0, 150.0, 175.0}) {
-        const size_t now = live_faces(mesh);
-        // Nothing to relax when no collapse at all is left that keeps the mesh manifold.
-        if (now <= targets[i] || !dec->topology_allows_a_collapse()) break;
-        // At 90 degrees only the placements change: the cheapest one that folds nothing.
-        if (angle == 90.0 && !h.fold_over.is_valid()) continue;
-        set_fold(angle, true);
-        collapses += dec->decimate_to_faces(0, targets[i] + (mesh.n_faces() - now));
-        if (progress.cancelled()) throw LodCancelled();
-        lod.fold_limit = angle;
-      }
-      lod.fold_fallbacks = fold_fallbacks(*dec, h) - fallbacks_before;
-      set_fold(90.0, false);
-    }
+    collapses += relax_folds(*dec, h, mesh, targets[i], opt, progress, lod);
     lod.at_floor = live_faces(mesh) > targets[i] && !dec->topology_allows_a_collapse();
     lod.ratio = ratios[i];
     lod.target = targets[i];
@@ -265,21 +296,8 @@ std::vector<LodLevel> decimate_chain(const Mesh& input, const std::vector<Pose>&
     if (i + 1 == targets.size()) dec.reset();
     // Earlier levels are copies, with the deleted elements until garbage collection: the working mesh
     // cannot be renumbered under the solver.
-    Mesh& snap = out[i].mesh;
-    if (i + 1 < targets.size()) snap = mesh;
-    snap.garbage_collection();
-    for (auto vh : snap.vertices()) snap.status(vh).set_locked(false);
-    // Garbage collection keeps the arrays' capacity (the full mesh's, 62 MB on the human): a copy holds
-    // only the level's size, and clear() frees the arrays before the copy is assigned back.
-    {
-      const Mesh compact = snap;
-      snap.clear();
-      snap = compact;
-    }
-    lod.faces = snap.n_faces();
-    if (lod.at_floor) lod.pieces = count_pieces(snap);
-    lod.vertices = snap.n_vertices();
-    lod.max_influences = max_influences_of(snap);
+    if (i + 1 < targets.size()) out[i].mesh = mesh;
+    snapshot(out[i].mesh, lod);
     out[i].report = lod;
   }
   return out;

@@ -2,7 +2,7 @@
 // What make_lods() is asked for, with the command line's defaults, and the checks that refuse a bad request
 // with the command line's one-line messages (the CLI, the Python package and a C++ caller all see the same).
 
-#include <OpenMeshSkinned/Mesh/SkinnedMesh.hh>
+#include <OpenMeshSkinned/Skin/SkinnedMesh.hh>
 
 #include <cstddef>
 #include <stdexcept>
@@ -48,14 +48,8 @@ struct LodOptions {
 /// Past this many example poses the schedule stops being a sample of the clips and becomes the clips.
 constexpr int kMaxLodPoses = 1000;
 /// What one example or held-out pose costs per vertex: posed position and pose quadric in the solver, posed
-/// copies in the evaluation (measured: about 240 KB per pose on a 2,000-vertex character).
+/// copies in the evaluation (measured: about 120 bytes per vertex and pose; rounded up here).
 constexpr size_t kBytesPerVertexPose = 128;
-
-/// Throws LodOptionsError when \p options cannot be right for any mesh.
-void check_lod_options(const LodOptions& options);
-/// Throws LodOptionsError when \p options cannot be carried out on \p mesh, named \p name in the message
-/// (more faces asked for than it has, no such clip, more poses than max_memory_mb allows, ...).
-void check_lod_options(const LodOptions& options, const SkinnedMesh& mesh, const std::string& name = "the mesh");
 
 /// The method make_lods() runs on \p mesh: options.method, or the default for this mesh.
 std::string lod_method_for(const LodOptions& options, const SkinnedMesh& mesh);

@@ -3,9 +3,9 @@
 // and judged in.
 
 #include <OpenMeshSkinned/Lod/SwitchHints.hh>
-#include <OpenMeshSkinned/Mesh/SkinnedMesh.hh>
 #include <OpenMeshSkinned/Skin/PoseSchedule.hh>
 #include <OpenMeshSkinned/Skin/Skeleton.hh>
+#include <OpenMeshSkinned/Skin/SkinnedMesh.hh>
 
 #include <cstddef>
 #include <string>

@@ -13,6 +13,7 @@
  *      save_lods(chain, "hero.glb");  // hero_lod1.glb, hero_lod2.glb, hero_lod3.glb
  */
 
+#include <OpenMeshSkinned/Lod/CheckLodOptions.hh>
 #include <OpenMeshSkinned/Lod/Evaluate.hh>
 #include <OpenMeshSkinned/Lod/LodMethods.hh>
 #include <OpenMeshSkinned/Lod/LodOptions.hh>

@@ -10,7 +10,7 @@
  *  bounding sphere's diameter (its "screen size"; the sphere around the box, diameter = its diagonal).
  */
 
-#include <OpenMeshSkinned/Mesh/SkinnedMesh.hh>
+#include <OpenMeshSkinned/Skin/SkinnedMesh.hh>
 
 #include <string>
 #include <utility>

@@ -5,7 +5,7 @@
  *  the papers' dense workloads from real characters. Per-halfedge normals and UVs are not carried.
  */
 
-#include "OpenMeshSkinned/Mesh/SkinnedMesh.hh"
+#include "OpenMeshSkinned/Skin/SkinnedMesh.hh"
 
 namespace OpenMeshSkinned {
 

@@ -4,7 +4,7 @@
  *  several face fans meet get a copy per extra fan, as OpenMesh's own readers do for complex edges.
  */
 
-#include "OpenMeshSkinned/Mesh/SkinnedMesh.hh"
+#include "OpenMeshSkinned/Skin/SkinnedMesh.hh"
 
 #include <OpenMesh/Core/Utils/Property.hh>
 

@@ -38,17 +38,9 @@ Eigen::Vector2d square_outline(double u) {
   }
 }
 
-}  // namespace
-
-SkinnedMesh make_skinned_tube(const TubeOptions& opt, double bend_degrees) {
-  SkinnedMesh mesh;
-  request_skinned_attributes(mesh);
-  const auto h_inf = add_skin(mesh);
-  const auto h_mat = face_material_handle(mesh);
-
-  const int nb = std::max(1, opt.bones);
-  const double bone_len = opt.length / nb;
-  Skeleton& skel = skeleton(mesh);
+// A chain of nb bones along +y, each bone_len long.
+Skeleton tube_skeleton(int nb, double bone_len) {
+  Skeleton skel;
   for (int b = 0; b < nb; ++b) {
     Joint j;
     j.name = "bone" + std::to_string(b);
@@ -57,25 +49,37 @@ SkinnedMesh make_skinned_tube(const TubeOptions& opt, double bend_degrees) {
     j.inverse_bind = translation(0, -b * bone_len, 0);
     skel.joints.push_back(j);
   }
+  return skel;
+}
 
+// The skin at height y: bone b owns [b, b+1) * bone_len; blend across each joint over +-blend*length.
+Influences tube_influences(const TubeOptions& opt, int nb, double bone_len, double y) {
+  Influences inf;
+  double w_prev = 1.0;
+  std::vector<double> w(nb, 0.0);
+  for (int b = 1; b < nb; ++b) {
+    const double s = smoothstep(b * bone_len - opt.blend * opt.length, b * bone_len + opt.blend * opt.length, y);
+    w[b - 1] = w_prev - s * w_prev;
+    w_prev = s * w_prev;
+  }
+  w[nb - 1] = w_prev;
+  for (int b = 0; b < nb; ++b)
+    if (w[b] > 1e-12) inf.push(b, w[b]);
+  inf.normalize();
+  inf.sort();
+  return inf;
+}
+
+// Rings of opt.around vertices at opt.along + 1 heights, joined by triangles of material 0, with
+// corner normals pointing straight out from the axis.
+void add_tube_surface(SkinnedMesh& mesh, const TubeOptions& opt, int nb, double bone_len) {
+  const auto h_inf = influences_handle(mesh);
+  const auto h_mat = face_material_handle(mesh);
   std::vector<SkinnedMesh::VertexHandle> vh;
   for (int i = 0; i <= opt.along; ++i) {
     const double y = opt.length * i / opt.along;
     const double r = opt.radius_base + (opt.radius_tip - opt.radius_base) * y / opt.length;
-    Influences inf;
-    // Bone b owns [b, b+1) * bone_len; blend across each joint over +-blend*length.
-    double w_prev = 1.0;
-    std::vector<double> w(nb, 0.0);
-    for (int b = 1; b < nb; ++b) {
-      const double s = smoothstep(b * bone_len - opt.blend * opt.length, b * bone_len + opt.blend * opt.length, y);
-      w[b - 1] = w_prev - s * w_prev;
-      w_prev = s * w_prev;
-    }
-    w[nb - 1] = w_prev;
-    for (int b = 0; b < nb; ++b)
-      if (w[b] > 1e-12) inf.push(b, w[b]);
-    inf.normalize();
-    inf.sort();
+    const Influences inf = tube_influences(opt, nb, bone_len, y);
     for (int k = 0; k < opt.around; ++k) {
       const double u = static_cast<double>(k) / opt.around;
       Eigen::Vector2d xz =
@@ -104,14 +108,10 @@ SkinnedMesh make_skinned_tube(const TubeOptions& opt, double bend_degrees) {
       if (n.norm() > 0) n.normalize();
       mesh.set_normal(heh, n);
     }
+}
 
-  Material mat;
-  mat.name = opt.square ? "column" : "leg";
-  mat.base_color[0] = 0.8;
-  mat.base_color[1] = 0.6;
-  mat.base_color[2] = 0.5;
-  materials(mesh).push_back(mat);
-
+// Every joint but the root turning by bend_degrees about x over one second.
+Clip bend_clip(int nb, double bend_degrees) {
   Clip clip;
   clip.name = "bend";
   clip.duration = 1.0;
@@ -123,8 +123,27 @@ SkinnedMesh make_skinned_tube(const TubeOptions& opt, double bend_degrees) {
     ch.rotations = {Eigen::Quaterniond::Identity(), bent};
     clip.channels.push_back(ch);
   }
-  clips(mesh).push_back(clip);
-  example_poses(mesh) = {Pose::identity(skel.size())};
+  return clip;
+}
+
+}  // namespace
+
+SkinnedMesh make_skinned_tube(const TubeOptions& opt, double bend_degrees) {
+  SkinnedMesh mesh;
+  request_skinned_attributes(mesh);
+  add_skin(mesh);
+  const int nb = std::max(1, opt.bones);
+  const double bone_len = opt.length / nb;
+  skeleton(mesh) = tube_skeleton(nb, bone_len);
+  add_tube_surface(mesh, opt, nb, bone_len);
+  Material mat;
+  mat.name = opt.square ? "column" : "leg";
+  mat.base_color[0] = 0.8;
+  mat.base_color[1] = 0.6;
+  mat.base_color[2] = 0.5;
+  materials(mesh).push_back(mat);
+  clips(mesh).push_back(bend_clip(nb, bend_degrees));
+  example_poses(mesh) = {Pose::identity(nb)};
   return mesh;
 }
 

@@ -4,7 +4,7 @@
  *  and Landreneau & Schaefer's square column bent in several example poses.
  */
 
-#include "OpenMeshSkinned/Mesh/SkinnedMesh.hh"
+#include "OpenMeshSkinned/Skin/SkinnedMesh.hh"
 
 namespace OpenMeshSkinned {
 

@@ -11,8 +11,8 @@
  *  offsets (MorphTransferT), the glTF file animates them, the poses of the clip pose it.
  */
 
-#include "OpenMeshSkinned/Mesh/SkinnedMesh.hh"
 #include "OpenMeshSkinned/Skin/Skeleton.hh"
+#include "OpenMeshSkinned/Skin/SkinnedMesh.hh"
 
 #include <Eigen/Core>
 

@@ -89,6 +89,24 @@ const std::vector<Pose>& example_poses(const Mesh& mesh) {
   return mesh.mproperty(detail::get_existing<OpenMesh::MPropHandleT<std::vector<Pose>>>(mesh, prop_names::kPoses))[0];
 }
 
+/** The example poses, for a module that judges collapses in them: std::invalid_argument when there are
+ *  none. The reader sets none (a character's clips hold many poses, and which to use is the caller's
+ *  choice); decimating in the bind pose alone must be asked for (use_bind_pose_only()). */
+template <typename Mesh>
+const std::vector<Pose>& required_example_poses(const Mesh& mesh) {
+  const std::vector<Pose>& poses = example_poses(mesh);
+  if (poses.empty())
+    throw std::invalid_argument(
+        "the mesh has no example poses: set example_poses(mesh) before initialize() (e.g. sample_poses_evenly over "
+        "one of clips(mesh)), or call use_bind_pose_only(mesh) to decimate in the rest pose alone");
+  return poses;
+}
+/// Makes the bind pose the only example pose: the mesh is decimated and judged in its rest pose alone.
+template <typename Mesh>
+void use_bind_pose_only(Mesh& mesh) {
+  example_poses(mesh) = {Pose::identity(skeleton(mesh).size())};
+}
+
 template <typename Mesh>
 std::vector<Clip>& clips(Mesh& mesh) {
   return mesh.mproperty(detail::get_existing<OpenMesh::MPropHandleT<std::vector<Clip>>>(mesh, prop_names::kClips))[0];

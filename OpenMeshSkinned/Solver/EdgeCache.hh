@@ -19,7 +19,7 @@ public:
 
   /** One slot per edge and a stamp per vertex, every slot empty. A slot holds at most \p capacity
    *  influences: the most an answer can have (the weight cap's n, when the solver places vertices itself;
-   *  at 4 of 8 that is 14 MB less on a 240k-triangle mesh). A larger answer is not kept, so it is solved
+   *  at 4 of 8 that is 40 bytes less per edge). A larger answer is not kept, so it is solved
    *  again when asked. */
   void reset(size_t n_edges, size_t n_vertices, int capacity = Influences::kCapacity) {
     capacity_ = std::clamp(capacity, 1, Influences::kCapacity);

@@ -14,7 +14,7 @@
  *  pair of a skeleton's joints, they would take 16 doubles x J^2 (a 60-joint character: 460 KB a vertex).
  */
 
-#include "OpenMeshSkinned/Solver/SkinnedQuadricSolve.hh"
+#include "OpenMeshSkinned/Solver/EdgeProblem.hh"
 
 #include <Eigen/Core>
 

@@ -3,7 +3,7 @@
  *  Per vertex and example pose: the posed position and the Garland-Heckbert quadric of the posed faces.
  *  Stored vertex-major (a vertex's poses side by side), as the solve reads them.
  *
- *  The stored positions are floats (13 MB less on a 240k-triangle character in 9 poses). Only the
+ *  The stored positions are floats (12 bytes less per vertex and pose). Only the
  *  fold-over check reads them, where a rounding of 10^-7 of the model's size turns no face that matters;
  *  the quadrics are built from positions in doubles, and posed() computes one in doubles, or reads it
  *  when set_keep_exact() asked for them to be kept as well (the deviation bound reads them all the time).
@@ -28,12 +28,11 @@ public:
 
   explicit PoseCacheT(Mesh& mesh) : mesh_(mesh) {}
 
-  /// Reads the example poses ("m:skin_poses"; the bind pose when there are none) and fills both tables
-  /// from the mesh as it is now, on up to \p threads threads (the tables do not depend on it).
+  /// Reads the example poses ("m:skin_poses"; std::invalid_argument when there are none) and fills both
+  /// tables from the mesh as it is now, on up to \p threads threads (the tables do not depend on it).
   void build(int threads = 1) {
     h_inf_ = influences_handle(mesh_);
-    poses_ = example_poses(mesh_);
-    if (poses_.empty()) poses_.push_back(Pose::identity(skeleton(mesh_).size()));
+    poses_ = required_example_poses(mesh_);
     // Every solve downstream assumes finite poses: a NaN would never converge.
     for (const Pose& p : poses_)
       if (!p.finite())

@@ -135,44 +135,55 @@ std::vector<SkinnedMesh::FaceHandle> folding_faces(const SkinnedMesh& mesh,
   return out;
 }
 
-}  // namespace
-
-RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const std::vector<Pose>& poses,
-                            const RefitSettings& settings) {
-  RefitReport report;
-  if (poses.empty() || lod.n_faces() == 0) return report;
-  const size_t nv = lod.n_vertices(), np = poses.size();
-  const int threads = std::max(1, settings.threads);
+// The original's triangles, as corner indices.
+std::vector<std::array<int, 3>> triangles_of(const SkinnedMesh& original) {
   std::vector<std::array<int, 3>> triangles;
   for (auto fh : original.faces()) {
     auto fv = original.cfv_iter(fh);
     const int a = (fv++)->idx(), b = (fv++)->idx(), c = fv->idx();
     triangles.push_back({a, b, c});
   }
-  // The original's points whose distance to the LOD is fitted: vertices, then triangle centroids, evenly
-  // strided down to max_samples.
-  const size_t total = original.n_vertices() + triangles.size();
-  const size_t stride =
-      std::max<size_t>(1, (total + settings.max_samples - 1) / std::max<size_t>(1, settings.max_samples));
+  return triangles;
+}
+
+// The original's points whose distance to the LOD is fitted: vertices, then triangle centroids, evenly
+// strided down to max_samples.
+std::vector<size_t> strided_samples(const SkinnedMesh& original, size_t n_triangles, size_t max_samples) {
+  const size_t total = original.n_vertices() + n_triangles;
+  const size_t stride = std::max<size_t>(1, (total + max_samples - 1) / std::max<size_t>(1, max_samples));
   std::vector<size_t> samples;
   for (size_t i = 0; i < total; i += stride)
     if (i >= original.n_vertices() || !original.status(SkinnedMesh::VertexHandle(int(i))).deleted())
       samples.push_back(i);
+  return samples;
+}
 
-  // Per pose, on threads taking poses in turn (a search tree each, so at most `threads` trees at once):
-  // the samples posed, and where each LOD vertex lies on the posed original, found once from the
-  // decimated LOD; the LOD must not leave those points. (Found in the rest shape instead, a vertex where
-  // two parts touch at rest, a helmet on a head, could be tied to the wrong one.)
-  std::vector<std::vector<Eigen::Vector3d>> target(np, std::vector<Eigen::Vector3d>(nv));
-  std::vector<std::vector<char>> has_target(np, std::vector<char>(nv, 0));
-  std::vector<std::vector<Eigen::Vector3d>> sample_at(np);
+// What every round fits to, per pose: the original's samples posed, and the point of the posed original
+// each LOD vertex must stay on.
+struct PoseTargets {
+  std::vector<size_t> samples;
+  std::vector<std::vector<Eigen::Vector3d>> sample_at;  // pose -> sample -> posed point
+  std::vector<std::vector<Eigen::Vector3d>> target;     // pose -> LOD vertex -> point on the posed original
+  std::vector<std::vector<char>> has_target;
+};
+
+// Per pose, on threads taking poses in turn (a search tree each, so at most `threads` trees at once):
+// the samples posed, and where each LOD vertex lies on the posed original, found once from the
+// decimated LOD; the LOD must not leave those points. (Found in the rest shape instead, a vertex where
+// two parts touch at rest, a helmet on a head, could be tied to the wrong one.)
+void find_pose_targets(const SkinnedMesh& lod, const SkinnedMesh& original, const std::vector<Pose>& poses,
+                       const std::vector<std::array<int, 3>>& triangles, int threads, PoseTargets& pt) {
+  const size_t nv = lod.n_vertices(), np = poses.size();
+  pt.target.assign(np, std::vector<Eigen::Vector3d>(nv));
+  pt.has_target.assign(np, std::vector<char>(nv, 0));
+  pt.sample_at.assign(np, {});
   for_each_pose(np, threads, [&](size_t j) {
     TriangleSoup posed;
     posed.points = skin_positions(original, poses[j]);
     posed.triangles = triangles;
-    auto& sp = sample_at[j];
-    sp.reserve(samples.size());
-    for (size_t i : samples) {
+    auto& sp = pt.sample_at[j];
+    sp.reserve(pt.samples.size());
+    for (size_t i : pt.samples) {
       if (i < original.n_vertices()) {
         sp.push_back(posed.points[i]);
       } else {
@@ -192,10 +203,96 @@ RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const
       const Eigen::Vector3d corners[3] = {posed.points[T[0]], posed.points[T[1]], posed.points[T[2]]};
       Eigen::Vector3d bary;
       closest_barycentric(corners, y[vh.idx()], bary);
-      target[j][vh.idx()] = bary[0] * corners[0] + bary[1] * corners[1] + bary[2] * corners[2];
-      has_target[j][vh.idx()] = 1;
+      pt.target[j][vh.idx()] = bary[0] * corners[0] + bary[1] * corners[1] + bary[2] * corners[2];
+      pt.has_target[j][vh.idx()] = 1;
     }
   });
+}
+
+// The original's samples onto the posed LOD, pose by pose on the threads.
+void project_samples(const SkinnedMesh& lod, const std::vector<Pose>& poses, const PoseTargets& pt, int round,
+                     int threads, std::vector<std::vector<Hit>>& hits) {
+  for_each_pose(poses.size(), threads, [&](size_t j) {
+    const TriangleSoup lsoup = posed_soup(lod, poses[j]);
+    // After the first round, last round's triangle starts each search (the LOD moved little since): the
+    // search tree's own start points are not needed.
+    const MeasuredSurface lsurf(lsoup, 0, 1, round == 0 ? MeasuredSurface::kAllHintPoints : 0);
+    hits[j].resize(pt.samples.size(), Hit{-1, {-1, -1, -1}, Eigen::Vector3d::Zero()});
+    for (size_t s = 0; s < pt.samples.size(); ++s) {
+      Hit& h = hits[j][s];
+      int tri = -1;
+      lsurf.distance(pt.sample_at[j][s], tri, h.id);
+      h.id = tri;
+      h.tri = {-1, -1, -1};
+      if (tri < 0) continue;
+      h.tri = lsoup.triangles[tri];
+      const Eigen::Vector3d corners[3] = {lsoup.points[h.tri[0]], lsoup.points[h.tri[1]], lsoup.points[h.tri[2]]};
+      closest_barycentric(corners, pt.sample_at[j][s], h.bary);
+    }
+  });
+}
+
+// The residuals of every pose, summed in pose order so that the answer does not depend on the thread count.
+void add_residuals(const SkinnedMesh& lod, const PoseTargets& pt, const std::vector<std::vector<Hit>>& hits,
+                   const std::vector<std::vector<AffineVertex>>& affine, const std::vector<Eigen::Vector3d>& x,
+                   Normal& ne) {
+  for (size_t j = 0; j < affine.size(); ++j) {
+    const std::vector<AffineVertex>& av = affine[j];
+    for (size_t s = 0; s < pt.samples.size(); ++s)
+      if (hits[j][s].tri[0] >= 0) ne.add(hits[j][s].tri.data(), hits[j][s].bary.data(), 3, av, x, pt.sample_at[j][s]);
+    // The LOD's vertices onto the original.
+    for (auto vh : lod.vertices()) {
+      if (!pt.has_target[j][vh.idx()]) continue;
+      const int v = vh.idx();
+      const double one = 1.0;
+      ne.add(&v, &one, 1, av, x, pt.target[j][v]);
+    }
+  }
+}
+
+// Halve the step until no face folds in any pose. A sliver turns over at any step: if one still folds
+// at the smallest, its corners stay where they are and the others try again, so that one face does
+// not hold the whole LOD back. False, with the LOD put back at \p x, when no step is left.
+bool take_step(SkinnedMesh& lod, const std::vector<Pose>& poses,
+               const std::vector<std::vector<Eigen::Vector3d>>& posed_initial, const std::vector<Eigen::Vector3d>& x,
+               const Eigen::VectorXd& dx) {
+  Eigen::VectorXd step_dir = dx;
+  bool moved = false;
+  for (int pinning = 0; pinning < 4 && !moved; ++pinning) {
+    double step = 1.0;
+    std::vector<SkinnedMesh::FaceHandle> folded;
+    for (int tries = 0; tries < 6 && !moved; ++tries, step *= 0.5) {
+      for (auto vh : lod.vertices()) {
+        const int v = vh.idx();
+        const Eigen::Vector3d p = x[v] + step * step_dir.segment<3>(3 * v);
+        lod.set_point(vh, SkinnedMesh::Point(p.x(), p.y(), p.z()));
+      }
+      std::vector<std::vector<Eigen::Vector3d>> posed_after;
+      for (const Pose& p : poses) posed_after.push_back(skin_positions(lod, p));
+      folded = folding_faces(lod, posed_initial, posed_after);
+      moved = folded.empty();
+    }
+    for (auto fh : folded)
+      for (auto vh : lod.fv_range(fh)) step_dir.segment<3>(3 * vh.idx()).setZero();
+  }
+  if (!moved)
+    for (auto vh : lod.vertices())
+      lod.set_point(vh, SkinnedMesh::Point(x[vh.idx()].x(), x[vh.idx()].y(), x[vh.idx()].z()));
+  return moved;
+}
+
+}  // namespace
+
+RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const std::vector<Pose>& poses,
+                            const RefitSettings& settings) {
+  RefitReport report;
+  if (poses.empty() || lod.n_faces() == 0) return report;
+  const size_t nv = lod.n_vertices(), np = poses.size();
+  const int threads = std::max(1, settings.threads);
+  const std::vector<std::array<int, 3>> triangles = triangles_of(original);
+  PoseTargets pt;
+  pt.samples = strided_samples(original, triangles.size(), settings.max_samples);
+  find_pose_targets(lod, original, poses, triangles, threads, pt);
   const std::vector<Eigen::Vector3d> x0 = rest_points(lod);
   // Skins and morph offsets do not change: each pose's affine maps serve every round.
   std::vector<std::vector<AffineVertex>> affine;
@@ -208,39 +305,9 @@ RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const
   for (int round = 0; round < settings.rounds; ++round) {
     std::vector<Eigen::Vector3d> x(nv);
     for (auto vh : lod.vertices()) x[vh.idx()] = to_eigen(lod.point(vh));
-    // The original's samples onto the posed LOD, pose by pose on the threads; summed below in pose order,
-    // so the answer does not depend on the thread count.
-    for_each_pose(np, threads, [&](size_t j) {
-      const TriangleSoup lsoup = posed_soup(lod, poses[j]);
-      // After the first round, last round's triangle starts each search (the LOD moved little since): the
-      // search tree's own start points are not needed.
-      const MeasuredSurface lsurf(lsoup, 0, 1, round == 0 ? MeasuredSurface::kAllHintPoints : 0);
-      hits[j].resize(samples.size(), Hit{-1, {-1, -1, -1}, Eigen::Vector3d::Zero()});
-      for (size_t s = 0; s < samples.size(); ++s) {
-        Hit& h = hits[j][s];
-        int tri = -1;
-        lsurf.distance(sample_at[j][s], tri, h.id);
-        h.id = tri;
-        h.tri = {-1, -1, -1};
-        if (tri < 0) continue;
-        h.tri = lsoup.triangles[tri];
-        const Eigen::Vector3d corners[3] = {lsoup.points[h.tri[0]], lsoup.points[h.tri[1]], lsoup.points[h.tri[2]]};
-        closest_barycentric(corners, sample_at[j][s], h.bary);
-      }
-    });
+    project_samples(lod, poses, pt, round, threads, hits);
     Normal ne(pattern, nv);
-    for (size_t j = 0; j < np; ++j) {
-      const std::vector<AffineVertex>& av = affine[j];
-      for (size_t s = 0; s < samples.size(); ++s)
-        if (hits[j][s].tri[0] >= 0) ne.add(hits[j][s].tri.data(), hits[j][s].bary.data(), 3, av, x, sample_at[j][s]);
-      // The LOD's vertices onto the original.
-      for (auto vh : lod.vertices()) {
-        if (!has_target[j][vh.idx()]) continue;
-        const int v = vh.idx();
-        const double one = 1.0;
-        ne.add(&v, &one, 1, av, x, target[j][v]);
-      }
-    }
+    add_residuals(lod, pt, hits, affine, x, ne);
     const double rms = std::sqrt(ne.sum_sq / std::max<size_t>(1, ne.n));
     if (round == 0) report.before = rms;
     report.after = rms;
@@ -255,33 +322,7 @@ RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const
     if (solver.info() != Eigen::Success) break;
     const Eigen::VectorXd dx = solver.solve(ne.rhs);
     if (solver.info() != Eigen::Success || !dx.allFinite()) break;
-    // Halve the step until no face folds in any pose. A sliver turns over at any step: if one still folds
-    // at the smallest, its corners stay where they are and the others try again, so that one face does
-    // not hold the whole LOD back.
-    Eigen::VectorXd step_dir = dx;
-    bool moved = false;
-    for (int pinning = 0; pinning < 4 && !moved; ++pinning) {
-      double step = 1.0;
-      std::vector<SkinnedMesh::FaceHandle> folded;
-      for (int tries = 0; tries < 6 && !moved; ++tries, step *= 0.5) {
-        for (auto vh : lod.vertices()) {
-          const int v = vh.idx();
-          const Eigen::Vector3d p = x[v] + step * step_dir.segment<3>(3 * v);
-          lod.set_point(vh, SkinnedMesh::Point(p.x(), p.y(), p.z()));
-        }
-        std::vector<std::vector<Eigen::Vector3d>> posed_after;
-        for (const Pose& p : poses) posed_after.push_back(skin_positions(lod, p));
-        folded = folding_faces(lod, posed_initial, posed_after);
-        moved = folded.empty();
-      }
-      for (auto fh : folded)
-        for (auto vh : lod.fv_range(fh)) step_dir.segment<3>(3 * vh.idx()).setZero();
-    }
-    if (!moved) {
-      for (auto vh : lod.vertices())
-        lod.set_point(vh, SkinnedMesh::Point(x[vh.idx()].x(), x[vh.idx()].y(), x[vh.idx()].z()));
-      break;
-    }
+    if (!take_step(lod, poses, posed_initial, x, dx)) break;
     ++report.rounds;
   }
   return report;

@@ -13,8 +13,8 @@
  *  degrees in some pose is halved until none does.
  */
 
-#include "OpenMeshSkinned/Mesh/SkinnedMesh.hh"
 #include "OpenMeshSkinned/Skin/Skeleton.hh"
+#include "OpenMeshSkinned/Skin/SkinnedMesh.hh"
 
 #include <vector>
 

@@ -14,8 +14,7 @@
  */
 
 #include "OpenMeshSkinned/Skin/Influences.hh"
-#include "OpenMeshSkinned/Skin/Skeleton.hh"
-#include "OpenMeshSkinned/Solver/PoseQuadric.hh"
+#include "OpenMeshSkinned/Solver/EdgeProblem.hh"
 #include "OpenMeshSkinned/Solver/WeightSolver.hh"
 
 #include <Eigen/Core>
@@ -40,45 +39,14 @@ struct CollapseResult {
 struct SolveSettings {
   int max_influences = Influences::kCapacity;
   // Greedy kept the posed surface closer on every real character and cap measured (bench/README.md,
-  // cap-strategy workload): a third of TopN's held-out error on the FBX character, whose raw weights use
+  // "omsk-bench: the papers' workloads", cap-strategy), by far on the FBX character, whose raw weights use
   // up to 8 bones. (TopN looked better before the weight solve's badly scaled KKT systems were fixed.)
   CapStrategy strategy = CapStrategy::Greedy;
   int max_iterations = 8;
-  // A round that lowers the error by less than this fraction ends the alternation. 1e-2 halved the weight
-  // solves against 1e-4 (the human on one thread, same session: 3.11 -> 2.61 s) with the peer benchmark's
-  // held-out errors unchanged to within its noise (bench/README.md, "Alternation tolerance").
+  // A round that lowers the error by less than this fraction ends the alternation. 1e-2 needs far fewer
+  // weight solves than 1e-4, with the peer benchmark's held-out errors unchanged to within its noise
+  // (bench/README.md, "Defaults chosen by measurement").
   double tolerance = 1e-2;
-};
-
-/** One edge (or one vertex, with a == b) as the kernel sees it. Reused between solves: its vectors keep
- *  their capacity, so filling a problem does not allocate once they have grown to the pose count. */
-struct EdgeProblem {
-  static constexpr int kMaxSupport = 2 * Influences::kCapacity;
-  static_assert(kMaxSupport <= WeightSolver::kMaxJoints, "the weight solve must hold both endpoints' joints");
-
-  int poses = 0;                         ///< P
-  int support = 0;                       ///< m, the joints the merged vertex may use
-  std::array<int, kMaxSupport> joint{};  ///< their skeleton indices
-  std::vector<PoseQuadric> quadric;      ///< per pose: the endpoints' quadrics, summed
-  std::vector<Affine3> transform;        ///< pose j, support joint k at [j * kMaxSupport + k] (set_pose's copies)
-  Eigen::Vector3d pa = Eigen::Vector3d::Zero(), pb = Eigen::Vector3d::Zero();  ///< endpoints' rest positions
-  WeightSolver::Vector start;  ///< start weights on the support (the endpoints' average)
-
-  /// Sets the support to the union of \p wa's and \p wb's joints, and the start to their average weights.
-  void set_skins(const Influences& wa, const Influences& wb);
-  /// Sizes the per-pose arrays for \p n poses (the transforms' only without use_poses()).
-  void resize(int n);
-  /// Copies the support joints' transforms of pose \p j from \p pose.
-  void set_pose(int j, const Pose& pose);
-  /** Reads every pose's transforms from \p poses (one per pose, indexed by skeleton joint) instead of
-   *  copies: \p poses must outlive the problem's solves. The decimation's poses do not change while it
-   *  runs, and copying them was a tenth of filling a problem (null: back to the copies). */
-  void use_poses(const std::vector<Pose>* poses) { shared_poses = poses; }
-
-  const Affine3& M(int j, int k) const {
-    return shared_poses ? (*shared_poses)[j].joint[joint[k]] : transform[j * kMaxSupport + k];
-  }
-  const std::vector<Pose>* shared_poses = nullptr;
 };
 
 /// E(v, a) of \p p by its definition, pose by pose (the solve itself sums the poses out: JointQuadrics.hh).

@@ -15,7 +15,7 @@
  *  The order of calls it relies on is listed in SolverModuleT.hh and pinned by test_decimater_contract.
  */
 
-#include "OpenMeshSkinned/Decimater/CollapseLegality.hh"
+#include "OpenMeshSkinned/Collapse/CollapseLegality.hh"
 
 #include <OpenMesh/Tools/Decimater/CollapseInfoT.hh>
 

@@ -20,9 +20,9 @@ namespace OpenMeshSkinned {
 inline constexpr double kFoldEdgeCos = -0.7;
 
 /// An attribute seam (Seams.hh: material boundary, textured UV seam, hard edge) gets the planes of a fold at
-/// this fraction of their weight. Measured (bench/peer-vs-gltfpack.sh on faerie and sydney): at 1 the texture
-/// deviation is lowest but the held-out RMS at 25% rises by 0.08 of gltfpack's; a quarter keeps most of the
-/// texture's gain (sydney's light stopping point: 2.0 → 0.6% of the texture width) for at most 0.06.
+/// this fraction of their weight. Measured with bench/peer-vs-gltfpack.sh on faerie and sydney: at 1 the
+/// texture deviation is lowest but the held-out RMS rises; a quarter keeps most of the texture's gain for a
+/// smaller rise (bench/README.md, "Defaults chosen by measurement").
 inline constexpr double kSeamPlaneWeight = 0.25;
 
 namespace detail {

@@ -1,8 +1,5 @@
 #include "OpenMeshSkinned/Solver/WeightSolver.hh"
 
-#include <ceres/ceres.h>
-#include <ceres/sphere_manifold.h>
-
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <Eigen/QR>
@@ -20,77 +17,22 @@ using Mat = WeightSolver::Matrix;
 using Vec = WeightSolver::Vector;
 using Mask = Eigen::Matrix<bool, Eigen::Dynamic, 1, 0, kMax, 1>;
 
-// Residual r(s) = U (s .* s) - z with U^T U = H + mu I and U^T z = mu a0, so that
-// |r|^2 = a^T (H + mu I) a - 2 mu a0^T a + const: the weight objective, as a least-squares problem in s.
-// Jacobian dr/ds = U diag(2 s).
-class SphereWeightCost final : public ceres::CostFunction {
-public:
-  explicit SphereWeightCost(int n) : n_(n) {
-    set_num_residuals(n);
-    mutable_parameter_block_sizes()->push_back(n);
-  }
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor, kMax, kMax> U;
-  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMax, 1> z;
-
-  // Returns false on a non-finite result: Ceres then rejects the step quietly, where a true with NaN in it
-  // makes it log a page per evaluation.
-  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
-    const double* s = parameters[0];
-    bool finite = true;
-    for (int i = 0; i < n_; ++i) {
-      double r = -z[i];
-      for (int k = 0; k < n_; ++k) r += U(i, k) * s[k] * s[k];
-      residuals[i] = r;
-      finite &= std::isfinite(r);
-    }
-    if (jacobians && jacobians[0])
-      for (int i = 0; i < n_; ++i)
-        for (int k = 0; k < n_; ++k) finite &= std::isfinite(jacobians[0][i * n_ + k] = U(i, k) * 2.0 * s[k]);
-    return finite;
-  }
-
-private:
-  int n_;
-};
+// The refused solve's weights: the start's heaviest \p cap, summing to one (all zero when the start is
+// unusable too), so that a caller that keeps the weights whatever the error still holds a valid skin.
+void truncated_start(const Vec& start, int cap, const Mask* active, Vec& alpha) {
+  const int m = static_cast<int>(start.size());
+  alpha.setZero(m);
+  std::array<int, kMax> order;
+  int n = 0;
+  for (int k = 0; k < m; ++k)
+    if ((!active || (*active)[k]) && std::isfinite(start[k]) && start[k] > 0.0) order[n++] = k;
+  std::sort(order.begin(), order.begin() + n, [&](int a, int b) { return start[a] > start[b]; });
+  double sum = 0.0;
+  for (int i = 0; i < std::min(n, cap); ++i) sum += alpha[order[i]] = start[order[i]];
+  if (sum > 0.0) alpha /= sum;
+}
 
 }  // namespace
-
-// One problem per size, built once and reused: only the cost's data and the start change between solves.
-struct WeightSolver::CeresCache {
-  struct Slot {
-    std::unique_ptr<ceres::Problem> problem;
-    SphereWeightCost* cost = nullptr;  // owned by problem
-    std::array<double, kMax> s{};
-  };
-  std::array<Slot, kMax + 1> slots;
-  ceres::Solver::Options options;
-
-  CeresCache() {
-    options.linear_solver_type = ceres::DENSE_QR;
-    options.logging_type = ceres::SILENT;
-    options.minimizer_progress_to_stdout = false;
-    options.max_num_iterations = 100;
-    options.function_tolerance = 1e-14;
-    options.gradient_tolerance = 1e-16;
-    options.parameter_tolerance = 1e-12;
-    options.num_threads = 1;
-  }
-
-  Slot& slot(int n) {
-    Slot& sl = slots[n];
-    if (!sl.problem) {
-      ceres::Problem::Options po;
-      sl.problem = std::make_unique<ceres::Problem>(po);
-      sl.cost = new SphereWeightCost(n);
-      sl.problem->AddResidualBlock(sl.cost, nullptr, sl.s.data());
-      sl.problem->SetManifold(sl.s.data(), new ceres::SphereManifold<ceres::DYNAMIC>(n));
-    }
-    return sl;
-  }
-};
-
-WeightSolver::WeightSolver() : ceres_(std::make_unique<CeresCache>()) {}
-WeightSolver::~WeightSolver() = default;
 
 bool WeightSolver::solve_kkt(const Mat& H, const Vec& start, double mu, const Mask& active, Vec& alpha,
                              bool allow_negative) const {
@@ -149,45 +91,6 @@ bool WeightSolver::solve_kkt(const Mat& H, const Vec& start, double mu, const Ma
   return true;
 }
 
-void WeightSolver::solve_ceres(const Mat& H, const Vec& start, double mu, const Mask& active, Vec& alpha) {
-  const int m = static_cast<int>(H.rows());
-  std::array<int, kMax> idx;
-  int r = 0;
-  for (int k = 0; k < m; ++k)
-    if (active[k]) idx[r++] = k;
-  alpha.setZero(m);
-  if (r == 1) {
-    alpha[idx[0]] = 1.0;
-    return;
-  }
-  Mat Hr(r, r);
-  Vec a0(r);
-  for (int i = 0; i < r; ++i) {
-    for (int j = 0; j < r; ++j) Hr(i, j) = H(idx[i], idx[j]);
-    Hr(i, i) += mu;
-    a0[i] = start[idx[i]];
-  }
-  CeresCache::Slot& sl = ceres_->slot(r);
-  const Eigen::LLT<Mat> llt(Hr);
-  sl.cost->U = llt.matrixU();
-  sl.cost->z = llt.matrixU().transpose().solve(Vec(mu * a0));
-  // Start inside the simplex: where a start weight is 0, its square root would sit on a stationary point
-  // of the parametrisation (d a / d s = 0) and never move, so every joint starts with a little weight.
-  double norm = 0.0;
-  for (int i = 0; i < r; ++i) {
-    sl.s[i] = std::sqrt(std::max(a0[i], 0.0) + 1e-3);
-    norm += sl.s[i] * sl.s[i];
-  }
-  norm = std::sqrt(norm);
-  for (int i = 0; i < r; ++i) sl.s[i] /= norm;
-  ceres::Solver::Summary summary;
-  ceres::Solve(ceres_->options, sl.problem.get(), &summary);
-  ++stats_.ceres_calls;
-  double sum = 0.0;
-  for (int i = 0; i < r; ++i) sum += sl.s[i] * sl.s[i];
-  for (int i = 0; i < r; ++i) alpha[idx[i]] = sl.s[i] * sl.s[i] / sum;
-}
-
 int WeightSolver::violated(const Mat& H, const Vec& start, double mu, const Mask& active, const Vec& alpha) const {
   // The problem is strictly convex (H is PSD and mu > 0), so a point meeting the KKT conditions is THE
   // optimum. With g the gradient, the multiplier of sum(a) = 1 is g_k on the support, and every joint
@@ -238,25 +141,6 @@ bool WeightSolver::active_set(const Mat& H, const Vec& start, double mu, const M
   }
   return false;
 }
-
-namespace {
-
-// The refused solve's weights: the start's heaviest \p cap, summing to one (all zero when the start is
-// unusable too), so that a caller that keeps the weights whatever the error still holds a valid skin.
-void truncated_start(const Vec& start, int cap, const Mask* active, Vec& alpha) {
-  const int m = static_cast<int>(start.size());
-  alpha.setZero(m);
-  std::array<int, kMax> order;
-  int n = 0;
-  for (int k = 0; k < m; ++k)
-    if ((!active || (*active)[k]) && std::isfinite(start[k]) && start[k] > 0.0) order[n++] = k;
-  std::sort(order.begin(), order.begin() + n, [&](int a, int b) { return start[a] > start[b]; });
-  double sum = 0.0;
-  for (int i = 0; i < std::min(n, cap); ++i) sum += alpha[order[i]] = start[order[i]];
-  if (sum > 0.0) alpha /= sum;
-}
-
-}  // namespace
 
 double WeightSolver::solve(const Mat& H, const Vec& start, Vec& alpha, const Mask* active_in) {
   const int m = static_cast<int>(H.rows());

@@ -5,6 +5,7 @@
 #include <OpenMeshSkinned/Deform/NearRigidSegmentation.hh>
 #include <OpenMeshSkinned/Deform/PoseSelection.hh>
 #include <OpenMeshSkinned/IO/ExportGltf.hh>
+#include <OpenMeshSkinned/IO/IOError.hh>
 #include <OpenMeshSkinned/IO/ImportFrames.hh>
 #include <OpenMeshSkinned/Skin/FrameAnimation.hh>
 #include <OpenMeshSkinned/Skin/LinearBlendSkinning.hh>

@@ -1,7 +1,7 @@
 #pragma once
 // What the command line asked for, and the one error type that means "the command line is wrong" (exit 2).
 
-#include <OpenMeshSkinned/Mesh/SkinnedMesh.hh>
+#include <OpenMeshSkinned/Skin/SkinnedMesh.hh>
 
 #include <stdexcept>
 #include <string>

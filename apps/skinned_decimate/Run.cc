@@ -235,6 +235,63 @@ void check_arguments(const Options& opt) {
 
 const char* current_stage() { return stage.load(); }
 
+namespace {
+
+// Every file the run writes, refused before any work when one would clash with an input or another output.
+void plan_run_outputs(const Options& opt, OutputSet& outputs) {
+  try {
+    if (!opt.output.empty()) plan_outputs(opt, {opt.output}, outputs);
+    if (!opt.segment.empty()) {
+      outputs.add(opt.segment);
+      outputs.add(segmentation_json_path(opt.segment));
+    }
+  } catch (const IOError& e) {
+    throw UsageError(e.what());  // a clash or a missing folder is the command line's fault: exit 2
+  }
+}
+
+ImportReport read_input(const Options& opt, const std::vector<std::string>& frames, Mesh& mesh) {
+  ImportOptions io;
+  io.isolate = opt.isolate;
+  io.memory_limit_mb = opt.max_memory_mb;
+  io.time_limit_seconds = opt.time_limit;
+  io.show_reader_output = opt.verbose;
+  stage = "reading the input";
+  const auto rep = frames.empty() ? import_skinned(opt.input, mesh, io)
+                                  : import_frame_animation(frames, mesh, io, frame_rate(frames, opt.fps));
+  if (!frames.empty() && !opt.quiet && frames.size() > 1)
+    std::cout << opt.input << ": one frame of " << frames.size() << " files "
+              << fs::path(frames.front()).filename().string() << " .. " << fs::path(frames.back()).filename().string()
+              << " (--no-sequence reads it alone)\n";
+  return rep;
+}
+
+// The LOD chains (every method's with --compare), their page sections, and the report.
+json run_methods(Mesh& mesh, const Options& opt, OutputSet& outputs, std::vector<HtmlSection>* sections) {
+  Options o = opt;
+  // A mesh animated without a skeleton gets the frame quadric by default: only it sees morph-target frames.
+  o.method = lod_method_for(lod_options(opt, opt.method_given ? opt.method : ""), mesh);
+  const std::string title = fs::path(opt.input).filename().string();
+  if (!o.compare) return run_character(mesh, opt.input, o, o.method, opt.output, &outputs, sections, title, &mesh);
+  json runs = json::array();
+  for (const LodMethod& m : lod_methods()) {
+    Options om = o;
+    const std::string name = m.name;
+    if (om.max_error > 0.0 && (name == "frames" || name == "deform")) {
+      std::cerr << "skinned-decimate: warning: --max-error does not apply to --method " << name
+                << " (it places vertices itself); its LODs are not bounded\n";
+      om.max_error = 0.0;
+    }
+    runs.push_back(
+        run_character(mesh, opt.input, om, name, opt.output, name == o.method ? &outputs : nullptr, sections, title));
+    std::cout << "\n";
+  }
+  print_comparison(runs);
+  return {{"input", opt.input}, {"runs", runs}};
+}
+
+}  // namespace
+
 int run(const Options& opt) {
   check_arguments(opt);
   if (opt.input.empty()) return run_builtin(opt);
@@ -249,30 +306,11 @@ int run(const Options& opt) {
                      " is not animated without a skeleton (an MD2/MD3/MDL file or a numbered sequence); for a "
                      "skinned clip's keys use --anim-error");
   OutputSet outputs(frames.empty() ? std::vector<std::string>{opt.input} : frames);
-  try {
-    if (!opt.output.empty()) plan_outputs(opt, {opt.output}, outputs);
-    if (!opt.segment.empty()) {
-      outputs.add(opt.segment);
-      outputs.add(segmentation_json_path(opt.segment));
-    }
-  } catch (const IOError& e) {
-    throw UsageError(e.what());  // a clash or a missing folder is the command line's fault: exit 2
-  }
+  plan_run_outputs(opt, outputs);
   Mesh mesh;
-  ImportOptions io;
-  io.isolate = opt.isolate;
-  io.memory_limit_mb = opt.max_memory_mb;
-  io.time_limit_seconds = opt.time_limit;
-  io.show_reader_output = opt.verbose;
-  stage = "reading the input";
   const auto t_import = Clock::now();
-  const auto rep = frames.empty() ? import_skinned(opt.input, mesh, io)
-                                  : import_frame_animation(frames, mesh, io, frame_rate(frames, opt.fps));
+  const ImportReport rep = read_input(opt, frames, mesh);
   const double import_s = seconds(t_import, Clock::now());
-  if (!frames.empty() && !opt.quiet && frames.size() > 1)
-    std::cout << opt.input << ": one frame of " << frames.size() << " files "
-              << fs::path(frames.front()).filename().string() << " .. " << fs::path(frames.back()).filename().string()
-              << " (--no-sequence reads it alone)\n";
   // --compare runs every method: whether a method can be bounded is its own run's business.
   check_lod_options(lod_options(opt, opt.compare ? "skinned" : opt.method_given ? opt.method : ""), mesh, opt.input);
   // After the checks, so that a bad argument is one line. Always shown: they say what was changed or lost.
@@ -286,34 +324,10 @@ int run(const Options& opt) {
       return 0;
     }
   }
-  Options o = opt;
-  // A mesh animated without a skeleton gets the frame quadric by default: only it sees morph-target frames.
-  o.method = lod_method_for(lod_options(opt, opt.method_given ? opt.method : ""), mesh);
-  json report;
   const bool page = !opt.html.empty() || !opt.preview.empty();
   std::vector<HtmlSection> sections;
-  const std::string title = fs::path(opt.input).filename().string();
-  if (o.compare) {
-    json runs = json::array();
-    for (const LodMethod& m : lod_methods()) {
-      Options om = o;
-      const std::string name = m.name;
-      if (om.max_error > 0.0 && (name == "frames" || name == "deform")) {
-        std::cerr << "skinned-decimate: warning: --max-error does not apply to --method " << name
-                  << " (it places vertices itself); its LODs are not bounded\n";
-        om.max_error = 0.0;
-      }
-      runs.push_back(run_character(mesh, opt.input, om, name, opt.output, name == o.method ? &outputs : nullptr,
-                                   page ? &sections : nullptr, title));
-      std::cout << "\n";
-    }
-    print_comparison(runs);
-    report = {{"input", opt.input}, {"runs", runs}};
-  } else {
-    report =
-        run_character(mesh, opt.input, o, o.method, opt.output, &outputs, page ? &sections : nullptr, title, &mesh);
-  }
-  if (page) write_page(opt, "skinned-decimate: " + title, sections, outputs);
+  json report = run_methods(mesh, opt, outputs, page ? &sections : nullptr);
+  if (page) write_page(opt, "skinned-decimate: " + fs::path(opt.input).filename().string(), sections, outputs);
   report["import_seconds"] = import_s;
   if (!opt.report.empty()) write_text(outputs.staging(opt.report), report.dump(2) + "\n");
   outputs.commit();

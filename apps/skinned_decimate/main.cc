@@ -1,30 +1,19 @@
 // skinned-decimate: LOD chains from skinned characters, judged in poses the decimater never saw.
 #include "BatchCommand.hh"
+#include "CommandLine.hh"
 #include "Options.hh"
 #include "Run.hh"
 
 #include <OpenMeshSkinned/IO/PrintableText.hh>
-#include <OpenMeshSkinned/Lod/LodMethods.hh>
-#include <OpenMeshSkinned/Solver/HugePages.hh>
+#include <OpenMeshSkinned/Lod/LodOptions.hh>
+#include <OpenMeshSkinned/Platform/HugePages.hh>
 
 #include <CLI/CLI.hpp>
 
-#include <algorithm>
 #include <iostream>
 #include <new>
 
 using namespace skinned_decimate;
-
-namespace {
-
-std::string method_help() {
-  std::string s = "Priority module:";
-  for (const auto& m : OpenMeshSkinned::lod_methods()) s += std::string(" ") + m.name + " (" + m.help + "),";
-  s.back() = '.';
-  return s;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   // Large characters decimate markedly faster with the heap on huge pages (see HugePages.hh).
@@ -34,112 +23,8 @@ int main(int argc, char** argv) {
       "in poses never seen.\n"
       "With no INPUT, runs the papers' test characters (DeCoro's leg, Landreneau-Schaefer's column)."};
   Options opt;
-  app.add_option("input", opt.input,
-                 "Skinned asset (glTF/GLB, FBX, Collada, X, MD5, ...), or a mesh animated without a skeleton: an "
-                 "MD2/MD3/MDL file (every stored frame is read) or one file of a numbered OBJ/PLY/STL/OFF sequence "
-                 "(walk_0001.obj, walk_0002.obj, ...: every file of it is a frame)")
-      ->check(CLI::ExistingFile);
-  app.add_option(
-      "-o,--output", opt.output,
-      "Output .glb/.gltf; with --lods, NAME_lod1.glb, NAME_lod2.glb ... in the order of decreasing ratio "
-      "(with no INPUT: the output folder). Never the input: all files of a run appear together at the end, or none");
-  auto* r = app.add_option("--ratio", opt.ratio, "Keep this fraction of the triangles, in (0,1] (default 0.5)");
-  auto* f = app.add_option("--faces", opt.faces, "Keep this many triangles");
-  auto* l =
-      app.add_option("--lods", opt.lods, "A chain of ratios, built in one pass, e.g. 0.5,0.25,0.1")->delimiter(',');
-  r->excludes(f)->excludes(l);
-  f->excludes(l);
-  app.add_option("--max-influences", opt.max_influences, "Bone influences per vertex at most (1-8, default 4)");
-  app.add_option("--poses", opt.poses,
-                 "Example poses: K evenly spaced times over the clip, both ends included, plus the bind pose (1-" +
-                     std::to_string(OpenMeshSkinned::kMaxLodPoses) + ", default 8)");
-  app.add_option("--pose-clip", opt.pose_clip,
-                 "Clip (name or index) for the example poses; default: all clips end to end");
-  app.add_option("--method", opt.method, method_help());
-  app.add_flag("--compare", opt.compare, "Run every method on the same input and print one table");
-  app.add_option("--report", opt.report, "Write the summary as JSON");
-  app.add_flag("--quiet", opt.quiet, "No progress and no pose list (warnings are still printed)");
-  app.add_flag("--verbose", opt.verbose,
-               "Also show what the input's reader printed (by default collected and dropped, so that a failure is "
-               "one line)");
-  app.add_flag("!--no-bind-pose", opt.bind_pose, "Do not add the bind pose to the example poses");
-  app.add_flag("!--no-isolate", opt.isolate,
-               "Read the input in this process (by default a child process reads it, so that a reader crash on a "
-               "corrupt file is a clean error)");
-  app.add_option("--max-memory", opt.max_memory_mb,
-                 "Memory limit in MB for reading the input and for the example poses (default 8192; 0 = none)");
-  app.add_option("--time-limit", opt.time_limit, "Seconds the input's reader may take (default 300; 0 = none)");
-  app.add_option("--threads", opt.threads, "Threads for solving edges and measuring error (default: all cores)")
-      ->check(CLI::Range(1, 256));
-  app.add_option("--html", opt.html,
-                 "Write a self-contained page playing the original and every LOD side by side, with the held-out "
-                 "error per vertex as colours");
-  std::string assets = "embed";
-  app.add_option("--html-assets", assets, "embed (default: the GLBs inside the page) or beside (in PAGE.assets.js)")
-      ->check(CLI::IsMember({"embed", "beside"}));
-  app.add_option("--preview", opt.preview,
-                 "Write a PNG contact sheet of the page (rows: original and LODs; columns: held-out frames), "
-                 "rendered by headless Chromium");
-  app.add_option("--joint-guard", opt.joint_guard,
-                 "Savoye & Meyer's joint-region guard: vertices with a weight of at least TAU times their joint's "
-                 "average weight may not disappear (the paper's TAU is 1; default off)")
-      ->check(CLI::PositiveNumber);
-  app.add_option("--max-joints", opt.max_joints,
-                 "Skeleton LoD: remove minor joints (Savoye & Meyer) until N remain, baking their motion into their "
-                 "children and re-solving the skins; one value, or one per LOD (N1,N2,...; the last repeats)")
-      ->delimiter(',')
-      ->check(CLI::PositiveNumber);
-  app.add_option("--joint-energy", opt.joint_energy,
-                 "Skeleton LoD by the paper's threshold: remove every minor joint whose joint energy over the clips "
-                 "is under E (with or without --max-joints)")
-      ->check(CLI::PositiveNumber);
-  app.add_option("--anim-error", opt.anim_error,
-                 "Motion LoD: drop every key frame whose loss moves no vertex of the LOD by more than E % of the "
-                 "diagonal, in any frame of the clips (default: clips kept whole)")
-      ->check(CLI::PositiveNumber);
-  std::string anim_method = "channels";
-  app.add_option("--anim-method", anim_method,
-                 "How --anim-error drops keys: channels (each channel where interpolation reproduces it; default) "
-                 "or frames (the paper's merge of whole key frames by joint energy)")
-      ->check(CLI::IsMember({"channels", "frames"}));
-  app.add_flag("--strict-fold", opt.strict_fold,
-               "Stop where every collapse would turn a face by more than 90 degrees in some pose (by default, to "
-               "reach the target, such a collapse is first made at the midpoint or an endpoint where that folds "
-               "nothing, then the limit is relaxed to 120, 150, then 175 degrees, and the table says so)");
-  app.add_option("--max-error", opt.max_error,
-                 "Bound the worst case: no vertex of the input may end up further than E % of the diagonal from the "
-                 "LOD in any example pose (a collapse that would break it waits; a LOD may stop above its target, "
-                 "and the table says so; the fold-over limit is not relaxed; a final fit that would break it is "
-                 "undone)")
-      ->check(CLI::PositiveNumber);
-  app.add_flag("!--no-sequence", opt.sequences,
-               "Read a numbered file as one mesh, not as a frame of the sequence its siblings make");
-  app.add_option("--fps", opt.fps,
-                 "Frame rate of a mesh animated without a skeleton (default 10 for MD2/MD3/MDL, 24 for sequences)")
-      ->check(CLI::PositiveNumber);
-  app.add_option("--keyframes", opt.keyframes,
-                 "Meshes animated without a skeleton: keep K of the frames in the LODs, chosen by a genetic "
-                 "algorithm (the deformation-analysis report) so that interpolation rebuilds the others best")
-      ->check(CLI::Range(2, 100000));
-  std::string pose_select = "even";
-  app.add_option("--pose-select", pose_select,
-                 "How the example poses are chosen: even (evenly spaced times; default) or ga (the key-frame "
-                 "genetic algorithm over the frames that are not held out)")
-      ->check(CLI::IsMember({"even", "ga"}));
-  app.add_option("--segment", opt.segment,
-                 "Write the input cut into near-rigid parts (Lee et al.) as OUT.glb, one colour per part, and "
-                 "the parts of its faces as OUT.json; without -o nothing is decimated");
-  std::string error_measure = "per-area";
-  app.add_option("--error", error_measure,
-                 "How the skinned method prices a collapse: per-area (its error over the area it stands for, a "
-                 "mean squared distance; default: keeps small sharp features, lowers the worst case) or energy "
-                 "(Landreneau & Schaefer's quartic energy as it is)")
-      ->check(CLI::IsMember({"per-area", "energy"}));
-  app.add_flag("!--no-refit", opt.refit,
-               "Skip the final fit (by default every LOD vertex's rest position is refitted against the original "
-               "surface in all example poses: sparse least squares, three rounds)");
-  app.add_flag("!--no-eval", opt.evaluate,
-               "Skip measuring the error in held-out frames (batch use: the table shows triangles and time only)");
+  OptionWords words;
+  declare_options(app, opt, words);
   const BatchCommand batch(app);  // skinned-decimate batch IN_DIR -o OUT_DIR [the options above]
   try {
     app.parse(argc, argv);
@@ -149,15 +34,7 @@ int main(int argc, char** argv) {
     std::cerr << "skinned-decimate: " << e.what() << "\n";
     return 2;
   }
-  opt.html_beside = assets == "beside";
-  opt.anim_frames = anim_method == "frames";
-  opt.pose_select_ga = pose_select == "ga";
-  opt.energy_error = error_measure == "energy";
-  opt.method_given = app.count("--method") > 0;
-  opt.poses_given = app.count("--poses") > 0;
-  opt.ratio_given = app.count("--ratio") > 0;
-  opt.faces_given = app.count("--faces") > 0;
-  std::sort(opt.lods.rbegin(), opt.lods.rend());
+  finish_options(app, words, opt);
   // Messages quote names and bytes of the file: shown as one printable line each.
   try {
     return batch.parsed() ? batch.run(app, opt) : run(opt);

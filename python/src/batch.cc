@@ -5,6 +5,7 @@
 
 #include <OpenMeshSkinned/IO/IOError.hh>
 #include <OpenMeshSkinned/Lod/Batch.hh>
+#include <OpenMeshSkinned/Lod/CheckLodOptions.hh>
 
 #include <pybind11/stl.h>
 

@@ -3,7 +3,7 @@
 // exception types, and the functions each file adds to the module.
 
 #include <OpenMeshSkinned/Lod/LodReport.hh>
-#include <OpenMeshSkinned/Mesh/SkinnedMesh.hh>
+#include <OpenMeshSkinned/Skin/SkinnedMesh.hh>
 
 #include <pybind11/pybind11.h>
 

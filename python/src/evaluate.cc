@@ -3,6 +3,7 @@
 #include "options.hh"
 #include "progress.hh"
 
+#include <OpenMeshSkinned/Lod/CheckLodOptions.hh>
 #include <OpenMeshSkinned/Lod/Evaluate.hh>
 #include <OpenMeshSkinned/Lod/LodPoses.hh>
 #include <OpenMeshSkinned/Skin/SkinProperties.hh>

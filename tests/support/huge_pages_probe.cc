@@ -1,6 +1,6 @@
-// Relaunches itself with huge pages (Solver/HugePages.hh), then prints its pid, its GLIBC_TUNABLES and its
+// Relaunches itself with huge pages (Platform/HugePages.hh), then prints its pid, its GLIBC_TUNABLES and its
 // arguments, one per line: test_huge_pages checks what the relaunched program sees.
-#include <OpenMeshSkinned/Solver/HugePages.hh>
+#include <OpenMeshSkinned/Platform/HugePages.hh>
 
 #include <unistd.h>
 

@@ -4,7 +4,8 @@
  *
  *  Debian builds OpenMesh with assertions on, and every status access inside the library checks its
  *  property's type name: TriConnectivity::is_collapse_ok builds and compares a std::string six times a
- *  call. On the column that was 45% of LazyDecimaterT's run. These functions give the same answers as
+ *  call, much of LazyDecimaterT's run on the column (bench/README.md, "omsk-bench: the papers'
+ *  workloads"). These functions give the same answers as
  *  TriConnectivity::is_collapse_ok and BaseDecimaterT::is_collapse_legal (test_collapse_legality checks
  *  them against the library on every halfedge through whole decimations), without the library's side
  *  effect of setting the "tagged" status bits of both one-rings.

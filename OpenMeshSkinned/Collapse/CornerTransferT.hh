@@ -12,8 +12,8 @@
  *  surviving halfedge of each takes the place of its neighbour's in the face beyond, carrying the vanished
  *  triangle's value for the far vertex. Across a seam that is the other side's value; apply() puts back
  *  what every surviving face had at its other corners, for the carried sets. UV0 is left as the collapse
- *  leaves it, as it always was: putting it back too changes existing LODs' UVs (on Testwuson, 5 % of the
- *  corners at half the triangles), a change to be judged on textured characters of its own.
+ *  leaves it, as it always was: putting it back too changes existing LODs' UVs (some of Testwuson's corners
+ *  at half the triangles), a change to be judged on textured characters of its own.
  *
  *  Usage, around each collapse: record() before, apply() after. Does nothing on a mesh that carries no
  *  set (UV0 counts only when some corner is non-zero, as generated meshes carry it all zero), so it costs
@@ -43,7 +43,8 @@ public:
     uv0_ = false;
     if (mesh_.has_halfedge_texcoords2D())
       // Corners only: a border halfedge belongs to no face, and nothing sets (or reads) its UV, which may
-      // hold anything; counting it made a UV-less 1M-triangle grid pay for UV bookkeeping (> 400 s).
+      // hold anything; counting it made a UV-less 1M-triangle grid pay for UV bookkeeping (bench/README.md,
+      // "omsk-bench: the papers' workloads").
       for (auto h : mesh_.halfedges())
         if (!mesh_.is_boundary(h) && (mesh_.texcoord2D(h)[0] != 0 || mesh_.texcoord2D(h)[1] != 0)) {
           uv0_ = true;

@@ -7,8 +7,8 @@
  *  4 KB page also costs a fault when first written. glibc (2.35 and later) puts its heap on transparent
  *  huge pages when the tunable glibc.malloc.hugetlb=1 is set, and Debian's kernels give them on such a
  *  request; but glibc reads its tunables only when a process starts. relaunch_with_huge_pages() therefore
- *  starts the program again, once, with the tunable added (measured in bench/README.md: the CLI on the
- *  240k-triangle human 5.8-6.0 -> 4.0-4.3 s in a virtual machine, the same output).
+ *  starts the program again, once, with the tunable added (bench/README.md, "Huge pages": faster in a
+ *  virtual machine, the same output).
  */
 
 #include <string>

@@ -1,4 +1,4 @@
-#include "OpenMeshSkinned/Solver/HugePages.hh"
+#include "OpenMeshSkinned/Platform/HugePages.hh"
 
 #include <unistd.h>
 

@@ -4,7 +4,7 @@
  *  It carries every per-corner set now (UV0, further UV sets, colours): see CornerTransferT.hh.
  */
 
-#include "OpenMeshSkinned/Decimater/CornerTransferT.hh"
+#include "OpenMeshSkinned/Collapse/CornerTransferT.hh"
 
 namespace OpenMeshSkinned {
 
