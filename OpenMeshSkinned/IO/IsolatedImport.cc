@@ -90,6 +90,65 @@ bool looks_like_oom(const std::string& message) {
   _exit(write_all(fd, out) ? 0 : 1);  // _exit: none of the parent's atexit handlers or buffers run twice
 }
 
+// Reads what the child sends (\p bytes) and prints (\p said, up to kMaxReaderOutput) until it closes its end
+// or \p time_limit_seconds (0: none) pass; true when the time ran out.
+bool read_child(int out_fd, int err_fd, double time_limit_seconds, std::string& bytes, std::string& said) {
+  using Clock = std::chrono::steady_clock;
+  const auto deadline = Clock::now() + std::chrono::duration<double>(time_limit_seconds);
+  bool timed_out = false, err_open = true;
+  char buf[1 << 16];
+  for (;;) {
+    int wait_ms = -1;
+    if (time_limit_seconds > 0) {
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+      if (left <= 0) {
+        timed_out = true;
+        break;
+      }
+      wait_ms = int(std::min<long long>(left, 1 << 30));
+    }
+    pollfd p[2] = {{out_fd, POLLIN, 0}, {err_open ? err_fd : -1, POLLIN, 0}};
+    const int r = ::poll(p, 2, wait_ms);
+    if (r < 0 && errno == EINTR) continue;
+    if (r == 0) continue;  // re-check the deadline
+    if (p[1].revents) {
+      const ssize_t n = ::read(err_fd, buf, sizeof buf);
+      if (n > 0 && said.size() < kMaxReaderOutput)
+        said.append(buf, std::min(size_t(n), kMaxReaderOutput - said.size()));
+      if (n == 0 || (n < 0 && errno != EINTR)) err_open = false;
+    }
+    if (!p[0].revents) continue;
+    const ssize_t n = ::read(out_fd, buf, sizeof buf);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;  // end of file: the child is done (or dead)
+    bytes.append(buf, size_t(n));
+  }
+  return timed_out;
+}
+
+// Throws the one-line error the child's end calls for: a time-out, running out of memory, a crash, no or an
+// unreadable result, or the reader's own error.
+void check_verdict(const std::string& path, const ImportOptions& opt, bool timed_out, int status,
+                   const std::string& bytes) {
+  auto fail = [&path](const std::string& what) { return IOError(path + ": " + what); };
+  const std::string format = " (format: " + format_name(path) + ")";
+  if (timed_out)
+    throw fail("the reader took longer than " + std::to_string(int(opt.time_limit_seconds)) + " s reading it" + format);
+  const std::string limit = opt.memory_limit_mb ? " (limit " + std::to_string(opt.memory_limit_mb) + " MB)" : "";
+  if (!bytes.empty() && bytes[0] == kOutOfMemory)
+    throw fail("the reader ran out of memory" + limit + " reading it" + format);
+  if (WIFSIGNALED(status)) {
+    const int sig = WTERMSIG(status);
+    const char* name = sigabbrev_np(sig);
+    throw fail(std::string("the reader crashed (SIG") + (name ? name : std::to_string(sig).c_str()) + ") reading it" +
+               format);
+  }
+  if (bytes.empty() || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw fail("the reader stopped without a result reading it" + format);
+  if (bytes[0] == kError) throw IOError(bytes.substr(1));  // the child's message already names the file
+  if (bytes[0] != kOk) throw fail("the reader sent an unreadable result" + format);
+}
+
 }  // namespace
 
 ImportReport import_isolated(const std::string& path, SkinnedMesh& mesh, const ImportOptions& opt, FileReader read) {
@@ -126,37 +185,8 @@ ImportReport import_isolated(const std::string& path, SkinnedMesh& mesh, const I
   ::close(fds[1]);
   ::close(err[1]);
 
-  using Clock = std::chrono::steady_clock;
-  const auto deadline = Clock::now() + std::chrono::duration<double>(opt.time_limit_seconds);
   std::string bytes, said;
-  bool timed_out = false, err_open = true;
-  char buf[1 << 16];
-  for (;;) {
-    int wait_ms = -1;
-    if (opt.time_limit_seconds > 0) {
-      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
-      if (left <= 0) {
-        timed_out = true;
-        break;
-      }
-      wait_ms = int(std::min<long long>(left, 1 << 30));
-    }
-    pollfd p[2] = {{fds[0], POLLIN, 0}, {err_open ? err[0] : -1, POLLIN, 0}};
-    const int r = ::poll(p, 2, wait_ms);
-    if (r < 0 && errno == EINTR) continue;
-    if (r == 0) continue;  // re-check the deadline
-    if (p[1].revents) {
-      const ssize_t n = ::read(err[0], buf, sizeof buf);
-      if (n > 0 && said.size() < kMaxReaderOutput)
-        said.append(buf, std::min(size_t(n), kMaxReaderOutput - said.size()));
-      if (n == 0 || (n < 0 && errno != EINTR)) err_open = false;
-    }
-    if (!p[0].revents) continue;
-    const ssize_t n = ::read(fds[0], buf, sizeof buf);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break;  // end of file: the child is done (or dead)
-    bytes.append(buf, size_t(n));
-  }
+  const bool timed_out = read_child(fds[0], err[0], opt.time_limit_seconds, bytes, said);
   ::close(fds[0]);
   ::close(err[0]);
   if (timed_out) ::kill(pid, SIGKILL);
@@ -168,22 +198,7 @@ ImportReport import_isolated(const std::string& path, SkinnedMesh& mesh, const I
     std::istringstream lines(said);
     for (std::string line; std::getline(lines, line);) std::cerr << "reader: " << printable_line(line, 1000) << "\n";
   }
-  const std::string format = " (format: " + format_name(path) + ")";
-  if (timed_out)
-    throw fail("the reader took longer than " + std::to_string(int(opt.time_limit_seconds)) + " s reading it" + format);
-  const std::string limit = opt.memory_limit_mb ? " (limit " + std::to_string(opt.memory_limit_mb) + " MB)" : "";
-  if (!bytes.empty() && bytes[0] == kOutOfMemory)
-    throw fail("the reader ran out of memory" + limit + " reading it" + format);
-  if (WIFSIGNALED(status)) {
-    const int sig = WTERMSIG(status);
-    const char* name = sigabbrev_np(sig);
-    throw fail(std::string("the reader crashed (SIG") + (name ? name : std::to_string(sig).c_str()) + ") reading it" +
-               format);
-  }
-  if (bytes.empty() || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    throw fail("the reader stopped without a result reading it" + format);
-  if (bytes[0] == kError) throw IOError(bytes.substr(1));  // the child's message already names the file
-  if (bytes[0] != kOk) throw fail("the reader sent an unreadable result" + format);
+  check_verdict(path, opt, timed_out, status, bytes);
   ImportReport rep;
   load_import(bytes.data() + 1, bytes.size() - 1, mesh, rep);
   return rep;
