@@ -4,7 +4,7 @@
  *  fails on scenes with several Draco primitives (see GltfDecompress.hh). Internal to the importer.
  */
 
-#include "OpenMeshSkinned/IO/GltfDecompress.hh"
+#include "OpenMeshSkinned/IO/GltfBytes.hh"
 
 #include <nlohmann/json.hpp>
 

@@ -4,7 +4,7 @@
  *  GltfDecompress.hh read quantised and sparse data and rewrite accessors in place. Internal to the importer.
  */
 
-#include "OpenMeshSkinned/IO/GltfDecompress.hh"
+#include "OpenMeshSkinned/IO/GltfBytes.hh"
 
 #include <nlohmann/json.hpp>
 

@@ -4,7 +4,7 @@
  *  which assimp 5.2 cannot read (see GltfDecompress.hh). Internal to the importer.
  */
 
-#include "OpenMeshSkinned/IO/GltfDecompress.hh"
+#include "OpenMeshSkinned/IO/GltfBytes.hh"
 
 #include <nlohmann/json.hpp>
 
