@@ -41,19 +41,8 @@ command -v node >/dev/null || { echo "image-judge: node is missing: run scripts/
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-# The same characters as bench/peer-vs-gltfpack.sh.
-"$cli" "$models/X/Testwuson.X" -o "$work/wuson.glb" --ratio 1 --no-refit --quiet --no-eval >/dev/null 2>&1
-"$cli" "$models/FBX/animation_with_skeleton.fbx" -o "$work/fbx.glb" --ratio 1 --no-refit --quiet --no-eval >/dev/null 2>&1
-for m in faerie sydney; do
-  "$cli" "$models/MD2/$m.md2" -o "$work/$m.glb" --ratio 1 --no-refit --quiet --no-eval >/dev/null 2>&1
-done
-"$bench" --write leg "$work/leg.glb"
-"$bench" --write column "$work/column.glb"
-"$bench" --write wuson8 "$work/wuson8.glb"
-inputs=("$work/wuson.glb" "$work/fbx.glb" "$models/glTF2/simple_skin/simple_skin.gltf" "$work/leg.glb"
-  "$work/column.glb" "$work/wuson8.glb" "$work/faerie.glb" "$work/sydney.glb")
-
-triangles() { grep -o 'output: 1 mesh primitives ([0-9]* triangles' "$1" | grep -o '[0-9]* triangles' | cut -d' ' -f1; }
+. bench/characters.sh
+write_characters "$work"
 
 # One job line per character and ratio: name, original, ratio, gltfpack's triangles, its LOD, ours, our report.
 jobs="$work/jobs.tsv"

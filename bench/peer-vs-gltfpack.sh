@@ -30,18 +30,8 @@ done
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-"$cli" "$models/X/Testwuson.X" -o "$work/wuson.glb" --ratio 1 --no-refit --quiet --no-eval >/dev/null
-"$cli" "$models/FBX/animation_with_skeleton.fbx" -o "$work/fbx.glb" --ratio 1 --no-refit --quiet --no-eval >/dev/null 2>&1
-for m in faerie sydney; do
-  "$cli" "$models/MD2/$m.md2" -o "$work/$m.glb" --ratio 1 --no-refit --quiet --no-eval >/dev/null 2>&1
-done
-"$bench" --write leg "$work/leg.glb"
-"$bench" --write column "$work/column.glb"
-"$bench" --write wuson8 "$work/wuson8.glb"
-inputs=("$work/wuson.glb" "$work/fbx.glb" "$models/glTF2/simple_skin/simple_skin.gltf" "$work/leg.glb"
-  "$work/column.glb" "$work/wuson8.glb" "$work/faerie.glb" "$work/sydney.glb")
-
-triangles() { grep -o 'output: 1 mesh primitives ([0-9]* triangles' "$1" | grep -o '[0-9]* triangles' | cut -d' ' -f1; }
+. bench/characters.sh
+write_characters "$work"
 field() { grep "\"candidate\":\"$2\"" "$1" | grep -o "\"$3\":[0-9.e+-]*" | cut -d: -f2; }
 
 printf '%-14s %-9s %6s %9s | %10s %10s %7s | %10s %10s %7s | %21s\n' character gltfpack ratio triangles \
