@@ -3,6 +3,7 @@
 #include "OpenMeshSkinned/IO/DracoDecode.hh"
 #include "OpenMeshSkinned/IO/GlbFile.hh"
 #include "OpenMeshSkinned/IO/GltfDequantize.hh"
+#include "OpenMeshSkinned/IO/GltfInterpolation.hh"
 #include "OpenMeshSkinned/IO/GltfJson.hh"
 #include "OpenMeshSkinned/IO/IOError.hh"
 #include "OpenMeshSkinned/IO/MeshoptDecode.hh"
@@ -39,7 +40,8 @@ void check_required_extensions(const json& doc, const std::string& shown_as) {
   }
 }
 
-std::vector<std::string> decompress_gltf(json& doc, GltfBytes& bytes, const std::string& shown_as) {
+std::vector<std::string> decompress_gltf(json& doc, GltfBytes& bytes, const std::string& shown_as,
+                                         std::vector<std::string>& notes) {
   std::vector<std::string> done;
   const bool meshopt = decode_meshopt(doc, bytes, shown_as);
   if (meshopt) {
@@ -52,6 +54,10 @@ std::vector<std::string> decompress_gltf(json& doc, GltfBytes& bytes, const std:
     if (declared(doc, kQuantization)) done.push_back(kQuantization);
     undeclare(doc, kQuantization);
   }
+  // After the decoders (animation data is often compressed or quantised).
+  const std::vector<std::string> rewritten = linearize_samplers(doc, bytes, shown_as);
+  if (!rewritten.empty()) done.push_back("STEP or CUBICSPLINE animation samplers");
+  notes.insert(notes.end(), rewritten.begin(), rewritten.end());
   // Last: it renumbers the buffers, which \p bytes knows by their numbers until every view is decoded.
   if (meshopt) drop_fallback_buffers(doc);
   return done;

@@ -27,9 +27,12 @@ namespace OpenMeshSkinned::detail {
 /// Throws IOError naming the first extension in "extensionsRequired" that the tool cannot honour.
 void check_required_extensions(const nlohmann::json& doc, const std::string& shown_as);
 
-/// Decodes everything listed in the file's comment above; returns the names of what it decoded (empty:
-/// \p doc is unchanged). Throws IOError, one line naming the file and the part, for data that cannot
-/// be decoded (a meshopt vertex codec newer than Debian's library, corrupt streams).
-std::vector<std::string> decompress_gltf(nlohmann::json& doc, GltfBytes& bytes, const std::string& shown_as);
+/// Decodes everything listed in the file's comment above, then rewrites the animation samplers assimp
+/// reads wrongly (GltfInterpolation.hh); returns the names of what it decoded or rewrote (empty: \p doc
+/// is unchanged), and adds to \p notes one line per kind of sampler rewritten, for the user. Throws
+/// IOError, one line naming the file and the part, for data that cannot be decoded (a meshopt vertex
+/// codec newer than Debian's library, corrupt streams).
+std::vector<std::string> decompress_gltf(nlohmann::json& doc, GltfBytes& bytes, const std::string& shown_as,
+                                         std::vector<std::string>& notes);
 
 }  // namespace OpenMeshSkinned::detail

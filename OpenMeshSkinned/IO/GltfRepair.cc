@@ -63,6 +63,9 @@ void link_resources(const json& doc, const fs::path& source_dir, const fs::path&
       const fs::path rel(uri);
       bool outside = rel.is_absolute() || uri.find(':') != std::string::npos;
       for (const auto& part : rel) outside |= part == "..";
+      // The materials' images are read from beside the file the user named (GltfMaterials.hh), not through
+      // the copy: one elsewhere (an absolute Windows path) needs no link.
+      if (outside && std::string(kind) == "images") continue;
       if (outside)
         throw IOError(path + ": has " + why + " (which assimp 5.2 cannot read) and refers to \"" + uri +
                       "\" outside its folder, so it cannot be rewritten on the way in");
@@ -100,7 +103,7 @@ RepairedGltf::RepairedGltf(const std::string& path) {
   std::vector<std::string> why;
   try {
     detail::check_required_extensions(doc, path);
-    why = detail::decompress_gltf(doc, bytes, path);
+    why = detail::decompress_gltf(doc, bytes, path, notes_);
     if (add_identity_inverse_binds(doc)) why.push_back("a skin without inverseBindMatrices");
   } catch (const json::exception& e) {
     // A field of the wrong type (a string where a count belongs): the file's fault, said as such.

@@ -8,10 +8,13 @@
  *  - Compressed and quantised data (`EXT_meshopt_compression`, `KHR_meshopt_compression` version 0,
  *    `KHR_draco_mesh_compression`, `KHR_mesh_quantization`): decoded into plain buffer views
  *    (GltfDecompress.hh). `KHR_texture_basisu` images pass through untouched.
+ *  - STEP and CUBICSPLINE animation samplers, which assimp reads as LINEAR ones: rewritten as LINEAR keys
+ *    that pose the same (GltfInterpolation.hh).
  *  A file that requires any other extension the tool cannot honour is refused.
  */
 
 #include <string>
+#include <vector>
 
 namespace OpenMeshSkinned {
 
@@ -28,9 +31,12 @@ public:
   RepairedGltf(const RepairedGltf&) = delete;
   RepairedGltf& operator=(const RepairedGltf&) = delete;
   const std::string& path() const { return path_; }
+  /// What the copy keeps differently from the file, one line each for the user (a STEP sampler as LINEAR keys).
+  const std::vector<std::string>& notes() const { return notes_; }
 
 private:
   std::string dir_, path_;
+  std::vector<std::string> notes_;
 };
 
 }  // namespace OpenMeshSkinned

@@ -199,7 +199,9 @@ ImportReport import_skinned(const std::string& path, SkinnedMesh& mesh, const Im
 
 ImportReport detail::import_file(const std::string& path, SkinnedMesh& mesh, const ImportOptions& opt) {
   const RepairedGltf repaired(path);
-  return import_scene(path, repaired.path().empty() ? path : repaired.path(), mesh, opt);
+  ImportReport rep = import_scene(path, repaired.path().empty() ? path : repaired.path(), mesh, opt);
+  rep.warnings.insert(rep.warnings.begin(), repaired.notes().begin(), repaired.notes().end());
+  return rep;
 }
 
 ImportReport detail::import_scene(const std::string& path, const std::string& read_path, SkinnedMesh& mesh,
