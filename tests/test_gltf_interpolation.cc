@@ -213,3 +213,31 @@ TEST(GltfInterpolation, TheToolsLodMovesLikeTheInputAndSaysWhatItKept) {
     omsk_test::expect_valid_gltf((d / "out.glb").string());
   }
 }
+
+// A file the repair must copy (its STEP sampler) whose image is named by an absolute Windows path: the
+// copy cannot link it, and needs not (materials read images beside the input), so the image still arrives.
+TEST(GltfInterpolation, ARepairedCopyKeepsAnImageNamedOutsideItsFolder) {
+  const fs::path d = omsk_test::scratch_dir("interpolation", "outside_image");
+  tinygltf::Model m = omsk_spec::load(simple_skin);
+  m.animations[0].samplers[0].interpolation = "STEP";
+  tinygltf::Image img;
+  img.uri = "C:/art/skin.png";
+  m.images.push_back(img);
+  tinygltf::Texture tex;
+  tex.source = 0;
+  m.textures.push_back(tex);
+  tinygltf::Material mat;
+  mat.name = "skin";
+  mat.pbrMetallicRoughness.baseColorTexture.index = 0;
+  m.materials.push_back(mat);
+  m.meshes[0].primitives[0].material = 0;
+  const std::string in = (d / "outside.gltf").string();
+  tinygltf::TinyGLTF writer;
+  ASSERT_TRUE(writer.WriteGltfSceneToFile(&m, in, false, true, true, false));
+  fs::copy_file(std::string(OMSK_TEST_MODELS) + "/glTF2/BoxTextured-glTF/CesiumLogoFlat.png", d / "skin.png");
+  const auto r = omsk_test::run_command(OMSK_CLI_EXE, "outside.gltf -o out.glb --ratio 1", d);
+  ASSERT_EQ(r.code, 0) << r.out;
+  const tinygltf::Model out = omsk_spec::load((d / "out.glb").string());
+  ASSERT_EQ(out.images.size(), 1u) << r.out;
+  EXPECT_EQ(out.images[0].mimeType, "image/png");
+}
