@@ -105,6 +105,10 @@ RepairedGltf::RepairedGltf(const std::string& path) {
     detail::check_required_extensions(doc, path);
     why = detail::decompress_gltf(doc, bytes, path, notes_);
     if (add_identity_inverse_binds(doc)) why.push_back("a skin without inverseBindMatrices");
+    // assimp 5.2 takes a GLB's first buffer for its binary chunk even when it has none and the buffer is a
+    // URI; the copy is written as .gltf instead, which reads every buffer from its URI.
+    if (glb && !has_bin && doc.contains("buffers") && doc["buffers"].is_array() && !doc["buffers"].empty())
+      why.push_back("a GLB without a binary chunk");
   } catch (const json::exception& e) {
     // A field of the wrong type (a string where a count belongs): the file's fault, said as such.
     throw IOError(path + ": a glTF field has the wrong type (" + e.what() + ")");
@@ -121,10 +125,12 @@ RepairedGltf::RepairedGltf(const std::string& path) {
   dir_ = tmpl;
   try {
     const fs::path scratch(dir_);
-    const fs::path out = scratch / fs::path(path).filename();
+    const bool as_glb = glb && (has_bin || !bin.empty());
+    const fs::path out =
+        scratch / (as_glb || !glb ? fs::path(path).filename() : fs::path(path).filename().replace_extension(".gltf"));
     std::string text = doc.dump();
     std::string file;
-    if (glb) {
+    if (as_glb) {
       while (text.size() % 4) text += ' ';
       while (bin.size() % 4) bin += '\0';
       const size_t bin_part = has_bin || !bin.empty() ? 8 + bin.size() : 0;

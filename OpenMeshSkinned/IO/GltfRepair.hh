@@ -8,6 +8,8 @@
  *  - Compressed and quantised data (`EXT_meshopt_compression`, `KHR_meshopt_compression` version 0,
  *    `KHR_draco_mesh_compression`, `KHR_mesh_quantization`): decoded into plain buffer views
  *    (GltfDecompress.hh). `KHR_texture_basisu` images pass through untouched.
+ *  - A GLB without a binary chunk (every buffer a URI), whose first buffer assimp takes for the missing
+ *    chunk: the copy is a .gltf.
  *  - STEP and CUBICSPLINE animation samplers, which assimp reads as LINEAR ones: rewritten as LINEAR keys
  *    that pose the same (GltfInterpolation.hh).
  *  A file that requires any other extension the tool cannot honour is refused.
