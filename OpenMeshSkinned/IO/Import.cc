@@ -248,7 +248,8 @@ ImportReport detail::import_scene(const std::string& path, const std::string& re
   }
   rep.twin_joints = joints.twins();
   finish_mesh(mesh, rep, path);
-  read_clips(scene, sn, joints, instances, target_base, mesh, rep.warnings);
+  read_clips(scene, sn, joints, instances, target_base, read_signed_morph_weights(read_path, rep.warnings), mesh,
+             rep.warnings);
   rep.clips = clips(mesh).size();
   check_input(mesh, path, rep.warnings);
   for (const std::string& m : log.data_loss()) rep.warnings.push_back("the reader dropped data: " + m);

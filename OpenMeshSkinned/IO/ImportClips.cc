@@ -47,8 +47,8 @@ Channel read_channel(const aiNodeAnim* na, double tps, double& duration) {
 }  // namespace
 
 void read_clips(const aiScene* scene, const SceneNodes& sn, const JointMap& joints,
-                const std::vector<MeshInstance>& instances, const std::vector<size_t>& target_base, SkinnedMesh& mesh,
-                std::vector<std::string>& warnings) {
+                const std::vector<MeshInstance>& instances, const std::vector<size_t>& target_base,
+                const SignedMorphWeights& signed_weights, SkinnedMesh& mesh, std::vector<std::string>& warnings) {
   for (unsigned a = 0; a < scene->mNumAnimations; ++a) {
     const aiAnimation* an = scene->mAnimations[a];
     const double tps = an->mTicksPerSecond > 0.0 ? an->mTicksPerSecond : 25.0;
@@ -71,6 +71,8 @@ void read_clips(const aiScene* scene, const SceneNodes& sn, const JointMap& join
       const aiMeshMorphAnim* ma = an->mMorphMeshChannels[c];
       std::string node_name = ma->mName.C_Str();
       if (node_name.find('*') != std::string::npos) node_name = node_name.substr(0, node_name.find('*'));
+      const SignedMorphWeights::Channel* file = signed_weights.find(a, node_name);
+      const size_t file_targets = file && file->keys == ma->mNumKeys ? file->values.size() / file->keys : 0;
       bool used = false;
       for (size_t ii = 0; ii < instances.size(); ++ii) {
         if (sn.nodes[instances[ii].node]->mName.C_Str() != node_name) continue;
@@ -87,6 +89,7 @@ void read_clips(const aiScene* scene, const SceneNodes& sn, const JointMap& join
             double w = 0.0;
             for (unsigned j = 0; j < key.mNumValuesAndWeights; ++j)
               if (key.mValues[j] == t) w = key.mWeights[j];
+            if (t < file_targets) w = file->values[k * file_targets + t];
             mc.times.push_back(key.mTime / tps);
             mc.weights.push_back(w);
             clip.duration = std::max(clip.duration, key.mTime / tps);

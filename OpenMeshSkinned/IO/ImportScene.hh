@@ -5,6 +5,7 @@
  *  Internal to the importer (Import.cc); the public entry point is import_skinned().
  */
 
+#include "OpenMeshSkinned/IO/GltfMorphWeights.hh"
 #include "OpenMeshSkinned/Skin/Skeleton.hh"
 #include "OpenMeshSkinned/Skin/SkinnedMesh.hh"
 
@@ -81,10 +82,11 @@ private:
 };
 
 /** The scene's animations as clips of \p mesh: joint channels (twins move with their node) and morph
- *  weight channels (\p target_base: the first morph target of each instance). What cannot be kept is said
+ *  weight channels (\p target_base: the first morph target of each instance), their weights taken from
+ *  \p signed_weights where it has the channel (assimp clamps negative ones). What cannot be kept is said
  *  in \p warnings. */
 void read_clips(const aiScene* scene, const SceneNodes& sn, const JointMap& joints,
-                const std::vector<MeshInstance>& instances, const std::vector<size_t>& target_base, SkinnedMesh& mesh,
-                std::vector<std::string>& warnings);
+                const std::vector<MeshInstance>& instances, const std::vector<size_t>& target_base,
+                const SignedMorphWeights& signed_weights, SkinnedMesh& mesh, std::vector<std::string>& warnings);
 
 }  // namespace OpenMeshSkinned::detail
