@@ -77,6 +77,44 @@ void link_resources(const json& doc, const fs::path& source_dir, const fs::path&
   }
 }
 
+// A GLB of \p json_text, the binary chunk \p bin (padded here) and the chunks after it as they were.
+std::string glb_file(std::string json_text, std::string& bin, const std::string& other_chunks) {
+  while (json_text.size() % 4) json_text += ' ';
+  while (bin.size() % 4) bin += '\0';
+  std::string file = "glTF";
+  put32(file, 2);
+  put32(file, uint32_t(12 + 8 + json_text.size() + 8 + bin.size() + other_chunks.size()));
+  put32(file, uint32_t(json_text.size()));
+  file += "JSON";
+  file += json_text;
+  put32(file, uint32_t(bin.size()));
+  file.append("BIN\0", 4);
+  file += bin;
+  return file + other_chunks;
+}
+
+// Every repair \p doc needs, made on it; what each was for (empty: none was needed). \p glb_without_chunk:
+// the file is a GLB with no binary chunk. Adds to \p notes what the user should know.
+std::vector<std::string> repairs(json& doc, detail::GltfBytes& bytes, const std::string& path, bool glb_without_chunk,
+                                 std::vector<std::string>& notes) {
+  std::vector<std::string> why;
+  try {
+    detail::check_required_extensions(doc, path);
+    why = detail::decompress_gltf(doc, bytes, path, notes);
+    if (add_identity_inverse_binds(doc)) why.push_back("a skin without inverseBindMatrices");
+    // assimp 5.2 takes a GLB's first buffer for its binary chunk even when it has none and the buffer is a
+    // URI; the copy is written as .gltf instead, which reads every buffer from its URI.
+    if (glb_without_chunk && doc.contains("buffers") && doc["buffers"].is_array() && !doc["buffers"].empty())
+      why.push_back("a GLB without a binary chunk");
+  } catch (const json::exception& e) {
+    // A field of the wrong type (a string where a count belongs): the file's fault, said as such.
+    throw IOError(path + ": a glTF field has the wrong type (" + e.what() + ")");
+  } catch (const std::logic_error& e) {  // std::stoul and friends on a malformed attribute name
+    throw IOError(path + ": a glTF field is malformed (" + e.what() + ")");
+  }
+  return why;
+}
+
 }  // namespace
 
 RepairedGltf::RepairedGltf(const std::string& path) {
@@ -100,21 +138,7 @@ RepairedGltf::RepairedGltf(const std::string& path) {
   if (doc.is_discarded() || !doc.is_object()) return;  // the reader judges
   const fs::path source_dir = fs::absolute(fs::path(path)).parent_path();
   detail::GltfBytes bytes(doc, has_bin ? &bin : nullptr, source_dir, path);
-  std::vector<std::string> why;
-  try {
-    detail::check_required_extensions(doc, path);
-    why = detail::decompress_gltf(doc, bytes, path, notes_);
-    if (add_identity_inverse_binds(doc)) why.push_back("a skin without inverseBindMatrices");
-    // assimp 5.2 takes a GLB's first buffer for its binary chunk even when it has none and the buffer is a
-    // URI; the copy is written as .gltf instead, which reads every buffer from its URI.
-    if (glb && !has_bin && doc.contains("buffers") && doc["buffers"].is_array() && !doc["buffers"].empty())
-      why.push_back("a GLB without a binary chunk");
-  } catch (const json::exception& e) {
-    // A field of the wrong type (a string where a count belongs): the file's fault, said as such.
-    throw IOError(path + ": a glTF field has the wrong type (" + e.what() + ")");
-  } catch (const std::logic_error& e) {  // std::stoul and friends on a malformed attribute name
-    throw IOError(path + ": a glTF field is malformed (" + e.what() + ")");
-  }
+  const std::vector<std::string> why = repairs(doc, bytes, path, glb && !has_bin, notes_);
   if (why.empty()) return;
   std::string reasons;
   for (const std::string& w : why) reasons += (reasons.empty() ? "" : ", ") + w;
@@ -128,27 +152,7 @@ RepairedGltf::RepairedGltf(const std::string& path) {
     const bool as_glb = glb && (has_bin || !bin.empty());
     const fs::path out =
         scratch / (as_glb || !glb ? fs::path(path).filename() : fs::path(path).filename().replace_extension(".gltf"));
-    std::string text = doc.dump();
-    std::string file;
-    if (as_glb) {
-      while (text.size() % 4) text += ' ';
-      while (bin.size() % 4) bin += '\0';
-      const size_t bin_part = has_bin || !bin.empty() ? 8 + bin.size() : 0;
-      file = "glTF";
-      put32(file, 2);
-      put32(file, uint32_t(12 + 8 + text.size() + bin_part + other_chunks.size()));
-      put32(file, uint32_t(text.size()));
-      file += "JSON";
-      file += text;
-      if (bin_part) {
-        put32(file, uint32_t(bin.size()));
-        file.append("BIN\0", 4);
-        file += bin;
-      }
-      file += other_chunks;
-    } else {
-      file = text;
-    }
+    const std::string file = as_glb ? glb_file(doc.dump(), bin, other_chunks) : doc.dump();
     link_resources(doc, source_dir, scratch, path, reasons);
     if (!bytes.added().empty()) {
       std::ofstream b(scratch / detail::GltfBytes::added_uri, std::ios::binary);

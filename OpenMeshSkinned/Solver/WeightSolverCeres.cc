@@ -18,7 +18,6 @@ namespace {
 constexpr int kMax = WeightSolver::kMaxJoints;
 using Mat = WeightSolver::Matrix;
 using Vec = WeightSolver::Vector;
-using Mask = Eigen::Matrix<bool, Eigen::Dynamic, 1, 0, kMax, 1>;
 
 // Residual r(s) = U (s .* s) - z with U^T U = H + mu I and U^T z = mu a0, so that
 // |r|^2 = a^T (H + mu I) a - 2 mu a0^T a + const: the weight objective, as a least-squares problem in s.
