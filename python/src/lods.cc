@@ -81,9 +81,8 @@ std::vector<std::string> save_chain(const Chain& c, const std::string& path) {
   }
 }
 
-}  // namespace
-
-void add_lods(py::module_& m) {
+// LodReport: the figures of one level.
+void add_lod_report(py::module_& m) {
   py::class_<LodReport>(m, "LodReport", "How one LOD was made and how far it is from the input (read-only).")
       .def_readonly("ratio", &LodReport::ratio, "The share of the input's triangles asked for.")
       .def_readonly("target", &LodReport::target, "Triangles asked for.")
@@ -119,7 +118,10 @@ void add_lods(py::module_& m) {
           "(N,) float32 copy: each vertex's worst held-out error, % (empty unless per_vertex_error).")
       .def("to_dict", &report_dict, "The report as a dict (without vertex_error), as the command line's --report.")
       .def("__repr__", [](const LodReport& r) { return "LodReport(" + std::string(py::str(report_dict(r))) + ")"; });
+}
 
+// Lod and LodChain: the levels and what can be done with them.
+void add_lod_chain(py::module_& m) {
   py::class_<Lod>(m, "Lod", "One level of a LodChain: its mesh and its report.")
       .def_property_readonly(
           "mesh",
@@ -176,7 +178,13 @@ void add_lods(py::module_& m) {
         return "<openmeshskinned.LodChain " + c.chain->method + ": " + std::to_string(c.chain->levels.size()) +
                " LODs>";
       });
+}
 
+}  // namespace
+
+void add_lods(py::module_& m) {
+  add_lod_report(m);
+  add_lod_chain(m);
   m.def("make_lods", &make_lods_py, py::arg("mesh"), py::kw_only(), py::arg("progress") = py::none(),
         ("Makes the LODs of mesh in one pass, largest first: what the skinned-decimate command does between reading "
          "and writing (example poses, decimation with a snapshot per level, fold-limit ladder, final fit, skeleton "

@@ -168,10 +168,8 @@ void save_mesh(const Mesh& m, const std::string& path) {
   }
 }
 
-}  // namespace
-
-void add_mesh(py::module_& m) {
-  const ImportOptions d;
+// Mesh: its arrays and figures, read-only.
+void add_mesh_class(py::module_& m) {
   py::class_<Mesh>(m, "Mesh",
                    "A skinned (or frame-animated) triangle mesh: rest positions, faces, skin, skeleton, clips, "
                    "morph targets and materials. Made by load() or make_lods(), never changed afterwards; every "
@@ -250,7 +248,13 @@ void add_mesh(py::module_& m) {
                " triangles, " + std::to_string(skeleton(*x.mesh).size()) + " joints, " +
                std::to_string(clips(*x.mesh).size()) + " clips>";
       });
+}
 
+}  // namespace
+
+void add_mesh(py::module_& m) {
+  add_mesh_class(m);
+  const ImportOptions d;
   m.def("load", &load, py::arg("path"), py::kw_only(), py::arg("isolate") = true,
         py::arg("max_memory_mb") = d.memory_limit_mb, py::arg("time_limit") = d.time_limit_seconds,
         py::arg("sequence") = true, py::arg("fps") = 0.0, py::arg("verbose") = false,
