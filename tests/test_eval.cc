@@ -3,6 +3,7 @@
 #include <OpenMeshSkinned/Mesh/ClosestPoint.hh>
 #include <OpenMeshSkinned/Mesh/Procedural.hh>
 
+#include <algorithm>
 #include <random>
 
 using namespace OpenMeshSkinned;
@@ -107,5 +108,26 @@ TEST(SurfaceDistance, TheNearestPointDoesNotDependOnHowManyStartPoints) {
       EXPECT_NEAR(surfaces[k].distance(q, t), d0, 1e-12 * (1.0 + d0)) << "surface " << k;
       ASSERT_GE(t, 0);
     }
+  }
+}
+
+// Hints from the previous frame change how fast the nearest points are found, never which: the numbers
+// equal the unhinted ones frame after frame, and every vertex gets its hint.
+TEST(SurfaceDistance, HintsFromTheLastFrameGiveTheSameNumbers) {
+  const Mesh original = omsk_test::load_character("X/Testwuson.X", 6);
+  Mesh lod = original;
+  omsk_test::decimate(lod, 0.2);
+  std::vector<int> original_hints, lod_hints;
+  for (double t : {0.1, 0.2, 0.45, 0.8}) {
+    const Pose p = sample_pose(skeleton(original), clips(original)[0], t * clips(original)[0].duration);
+    const MeasuredSurface a(posed_soup(original, p), 3000, 1), b(posed_soup(lod, p), 3000, 2);
+    const SurfaceDistance plain = surface_distance(a, b), hinted = surface_distance(a, b, original_hints, lod_hints);
+    EXPECT_EQ(hinted.samples, plain.samples);
+    EXPECT_DOUBLE_EQ(hinted.rms, plain.rms) << "t " << t;
+    EXPECT_DOUBLE_EQ(hinted.hausdorff, plain.hausdorff) << "t " << t;
+    EXPECT_GT(original_hints.size(), lod_hints.size());  // one per vertex a face uses
+    EXPECT_LE(original_hints.size(), original.n_vertices());
+    EXPECT_TRUE(std::all_of(original_hints.begin(), original_hints.end(),
+                            [&](int h) { return h >= 0 && size_t(h) < lod.n_faces(); }));
   }
 }

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <tuple>
 
 namespace OpenMeshSkinned {
 namespace {
@@ -32,13 +33,14 @@ std::vector<Triangle> to_cgal(const TriangleSoup& s) {
 }
 
 // Samples of \p from: its vertices, then n points by area (uniform in each triangle).
-std::vector<Point> samples(const TriangleSoup& from, size_t n, std::mt19937_64& rng) {
+std::vector<Point> samples(const TriangleSoup& from, size_t n, std::mt19937_64& rng, size_t& vertices) {
   std::vector<Point> pts;
   std::vector<char> used(from.points.size(), 0);
   for (const auto& f : from.triangles)
     for (int i : f) used[i] = 1;
   for (size_t i = 0; i < from.points.size(); ++i)
     if (used[i]) pts.emplace_back(from.points[i].x(), from.points[i].y(), from.points[i].z());
+  vertices = pts.size();
   std::vector<double> cum;
   double total = 0.0;
   for (const auto& f : from.triangles) {
@@ -68,13 +70,14 @@ std::vector<Point> samples(const TriangleSoup& from, size_t n, std::mt19937_64& 
 struct MeasuredSurface::Impl {
   std::vector<Triangle> triangles;
   std::unique_ptr<Tree> tree;  // null for a surface without triangles
-  std::vector<Point> samples;
+  std::vector<Point> samples;  // the vertices first, then the area samples
+  size_t vertex_samples = 0;
 };
 
 MeasuredSurface::MeasuredSurface(const TriangleSoup& soup, size_t n, uint64_t seed, size_t hint_points)
     : impl_(std::make_unique<Impl>()) {
   std::mt19937_64 rng(seed);
-  impl_->samples = samples(soup, n, rng);
+  impl_->samples = samples(soup, n, rng, impl_->vertex_samples);
   impl_->triangles = to_cgal(soup);
   if (impl_->triangles.empty()) return;
   impl_->tree = std::make_unique<Tree>(impl_->triangles.begin(), impl_->triangles.end());
@@ -131,7 +134,46 @@ void one_way(const MeasuredSurface::Impl& from, const MeasuredSurface::Impl& to,
   }
 }
 
+// As one_way(), each vertex's query starting from \p hints' triangle where it has one, which it then updates.
+void one_way_hinted(const MeasuredSurface::Impl& from, const MeasuredSurface::Impl& to, std::vector<int>& hints,
+                    double& sum_sq, double& max_d, size_t& count) {
+  if (!to.tree) return;
+  hints.resize(from.vertex_samples, -1);
+  const int nt = static_cast<int>(to.triangles.size());
+  for (size_t k = 0; k < from.samples.size(); ++k) {
+    const Point& p = from.samples[k];
+    const int h = k < hints.size() ? hints[k] : -1;
+    Iterator it;
+    Point nearest;
+    if (h >= 0 && h < nt) {
+      const Iterator start = to.triangles.begin() + h;
+      std::tie(nearest, it) =
+          to.tree->closest_point_and_primitive(p, {K().construct_projected_point_3_object()(*start, p), start});
+    } else {
+      std::tie(nearest, it) = to.tree->closest_point_and_primitive(p);
+    }
+    if (k < hints.size()) hints[k] = static_cast<int>(it - to.triangles.begin());
+    const double d2 = CGAL::squared_distance(p, nearest);
+    sum_sq += d2;
+    max_d = std::max(max_d, std::sqrt(d2));
+    ++count;
+  }
+}
+
 }  // namespace
+
+SurfaceDistance surface_distance(const MeasuredSurface& a, const MeasuredSurface& b, std::vector<int>& a_hints,
+                                 std::vector<int>& b_hints) {
+  double sum_sq = 0.0, max_d = 0.0;
+  size_t count = 0;
+  one_way_hinted(a.impl(), b.impl(), a_hints, sum_sq, max_d, count);
+  one_way_hinted(b.impl(), a.impl(), b_hints, sum_sq, max_d, count);
+  SurfaceDistance d;
+  d.samples = count;
+  d.rms = count ? std::sqrt(sum_sq / count) : 0.0;
+  d.hausdorff = max_d;
+  return d;
+}
 
 SurfaceDistance surface_distance(const MeasuredSurface& a, const MeasuredSurface& b) {
   double sum_sq = 0.0, max_d = 0.0;

@@ -63,6 +63,14 @@ private:
 /// Distance between two prepared surfaces: each one's samples to the other's triangles, pooled.
 SurfaceDistance surface_distance(const MeasuredSurface& a, const MeasuredSurface& b);
 
+/** The same distance, each vertex's query starting from the triangle it hit before: \p a_hints holds, per
+ *  vertex of \p a, the triangle of \p b nearest to it last time (-1 or missing: none), and is updated;
+ *  \p b_hints the same for \p b's vertices (area samples fall elsewhere in every pose, and keep the surface's
+ *  own start points). For the same surfaces measured again in another pose (the frames of a clip): the
+ *  numbers of surface_distance(a, b), found faster. */
+SurfaceDistance surface_distance(const MeasuredSurface& a, const MeasuredSurface& b, std::vector<int>& a_hints,
+                                 std::vector<int>& b_hints);
+
 /** Distance between \p a and \p b with about \p samples_per_surface area samples on each (plus vertices).
  *  Deterministic for a given \p seed. */
 SurfaceDistance surface_distance(const TriangleSoup& a, const TriangleSoup& b, size_t samples_per_surface = 20000,
