@@ -241,3 +241,26 @@ TEST(GltfInterpolation, ARepairedCopyKeepsAnImageNamedOutsideItsFolder) {
   ASSERT_EQ(out.images.size(), 1u) << r.out;
   EXPECT_EQ(out.images[0].mimeType, "image/png");
 }
+
+// A weights channel holds one value per morph target and key: two targets, cubic, as SCALAR outputs.
+TEST(GltfInterpolation, CubicMorphWeightsKeepOneValuePerTarget) {
+  // Per key: in-tangents (2), values (2), out-tangents (2); the second target runs backwards.
+  json doc =
+      one_sampler("CUBICSPLINE", {0.0f, 2.0f}, {0, 0, 0, 1, 0.5f, -0.5f, 0.5f, -0.5f, 1, 0, 0, 0}, "SCALAR", "weights");
+  detail::GltfBytes bytes(doc, nullptr, dir(), "t");
+  ASSERT_EQ(detail::linearize_samplers(doc, bytes, "t").size(), 1u);
+  const std::vector<double> t = values_of(doc, "input", bytes), v = values_of(doc, "output", bytes);
+  ASSERT_EQ(t.size(), size_t(detail::kCubicSegments + 1));
+  ASSERT_EQ(v.size(), 2 * t.size());
+  const json& out = doc["accessors"][doc["animations"][0]["samplers"][0]["output"].get<size_t>()];
+  EXPECT_EQ(out["type"], "SCALAR");
+  EXPECT_EQ(out["count"].get<size_t>(), v.size());
+  for (size_t k = 0; k < t.size(); ++k) {
+    const double u = t[k] / 2.0, u2 = u * u, u3 = u2 * u, dt = 2.0;
+    // Target 0: from 0 to 1 with tangents 0.5 and 0.5; target 1: from 1 to 0 with tangents -0.5 and -0.5.
+    const double w0 = (u3 - 2 * u2 + u) * dt * 0.5 + (-2 * u3 + 3 * u2) * 1 + (u3 - u2) * dt * 0.5;
+    const double w1 = (2 * u3 - 3 * u2 + 1) * 1 + (u3 - 2 * u2 + u) * dt * -0.5 + (u3 - u2) * dt * -0.5;
+    EXPECT_NEAR(v[2 * k], w0, 1e-6) << "u " << u;
+    EXPECT_NEAR(v[2 * k + 1], w1, 1e-6) << "u " << u;
+  }
+}
