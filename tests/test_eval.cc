@@ -123,8 +123,8 @@ TEST(SurfaceDistance, HintsFromTheLastFrameGiveTheSameNumbers) {
     const MeasuredSurface a(posed_soup(original, p), 3000, 1), b(posed_soup(lod, p), 3000, 2);
     const SurfaceDistance plain = surface_distance(a, b), hinted = surface_distance(a, b, original_hints, lod_hints);
     EXPECT_EQ(hinted.samples, plain.samples);
-    EXPECT_DOUBLE_EQ(hinted.rms, plain.rms) << "t " << t;
-    EXPECT_DOUBLE_EQ(hinted.hausdorff, plain.hausdorff) << "t " << t;
+    EXPECT_EQ(hinted.rms, plain.rms) << "t " << t;  // bit for bit
+    EXPECT_EQ(hinted.hausdorff, plain.hausdorff) << "t " << t;
     EXPECT_GT(original_hints.size(), lod_hints.size());  // one per vertex a face uses
     EXPECT_LE(original_hints.size(), original.n_vertices());
     EXPECT_TRUE(std::all_of(original_hints.begin(), original_hints.end(),

@@ -147,10 +147,11 @@ TEST(GltfInterpolation, StepKeysSwitchWithinAMillisecondBeforeEachKey) {
 }
 
 TEST(GltfInterpolation, CubicKeysFollowTheHermiteCurveAndRotationsStayUnit) {
-  // Two keys one second apart; rotation about z from identity to 90 degrees, with strong tangents.
+  // Two keys one second apart; rotation about z from identity to 90 degrees, with strong tangents that
+  // differ at the two ends (an out-tangent used for the in-tangent would show).
   const float s = std::sqrt(0.5f);
   json doc = one_sampler("CUBICSPLINE", {0.0f, 1.0f}, {0,        0, 0, 0, /*v0*/ 0, 0, 0, 1, /*b0*/ 0, 0, 2, 0,
-                                                       /*a1*/ 0, 0, 2, 0, /*v1*/ 0, 0, s, s, 0,        0, 0, 0},
+                                                       /*a1*/ 0, 0, 1, 0, /*v1*/ 0, 0, s, s, 0,        0, 0, 0},
                          "VEC4", "rotation");
   detail::GltfBytes bytes(doc, nullptr, dir(), "t");
   ASSERT_EQ(detail::linearize_samplers(doc, bytes, "t").size(), 1u);
@@ -159,7 +160,7 @@ TEST(GltfInterpolation, CubicKeysFollowTheHermiteCurveAndRotationsStayUnit) {
   EXPECT_DOUBLE_EQ(t.back(), 1.0);
   for (size_t k = 0; k < t.size(); ++k) {
     const double u = t[k], u2 = u * u, u3 = u2 * u;
-    const double z = (u3 - 2 * u2 + u) * 2 + (-2 * u3 + 3 * u2) * s + (u3 - u2) * 2,
+    const double z = (u3 - 2 * u2 + u) * 2 + (-2 * u3 + 3 * u2) * s + (u3 - u2) * 1,
                  w = (2 * u3 - 3 * u2 + 1) * 1 + (-2 * u3 + 3 * u2) * s;
     const double len = std::hypot(z, w);
     EXPECT_NEAR(v[4 * k + 2], z / len, 1e-6) << "u " << u;
@@ -263,4 +264,17 @@ TEST(GltfInterpolation, CubicMorphWeightsKeepOneValuePerTarget) {
     EXPECT_NEAR(v[2 * k], w0, 1e-6) << "u " << u;
     EXPECT_NEAR(v[2 * k + 1], w1, 1e-6) << "u " << u;
   }
+}
+
+// Keys one float apart (how some exporters fake a step) leave no room for steps between them: the written
+// times still increase strictly, as the spec requires.
+TEST(GltfInterpolation, CubicKeysOneFloatApartKeepTheTimesIncreasing) {
+  const float t1 = std::nextafter(10.0f, 20.0f);
+  json doc = one_sampler("CUBICSPLINE", {10.0f, t1, 11.0f}, {0, 0, 0, 0, 1, 0, 0, 2, 0}, "SCALAR", "weights");
+  detail::GltfBytes bytes(doc, nullptr, dir(), "t");
+  ASSERT_EQ(detail::linearize_samplers(doc, bytes, "t").size(), 1u);
+  const std::vector<double> t = values_of(doc, "input", bytes);
+  ASSERT_EQ(t.size(), size_t(2 + detail::kCubicSegments));  // the two keys, then the second interval's steps
+  for (size_t k = 1; k < t.size(); ++k) EXPECT_LT(float(t[k - 1]), float(t[k])) << k;
+  EXPECT_EQ(float(t.back()), 11.0f);
 }

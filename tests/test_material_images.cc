@@ -115,7 +115,8 @@ TEST(MaterialImages, AnEmbeddedTextureComesBeforeAFileOfTheSameName) {
   t->mFilename = aiString("skin.png");
   Image img;
   std::string problem;
-  ASSERT_TRUE(fetch_image(&scene, "*0", dir.string(), img, problem)) << problem;
+  // By the embedded texture's own file name: a file of that name beside the model (black) must not win.
+  ASSERT_TRUE(fetch_image(&scene, "skin.png", dir.string(), img, problem)) << problem;
   std::vector<unsigned char> px;
   int w = 0, h = 0;
   ASSERT_TRUE(decode_rgba(img, px, w, h));
@@ -124,6 +125,7 @@ TEST(MaterialImages, AnEmbeddedTextureComesBeforeAFileOfTheSameName) {
   EXPECT_EQ(int(px[0]), 30);  // red, from the texel's r
   EXPECT_EQ(int(px[2]), 10);
 
+  ASSERT_TRUE(fetch_image(&scene, "*0", dir.string(), img, problem)) << problem;  // and by its index
   ASSERT_TRUE(fetch_image(&scene, "other.png", dir.string(), img, problem) == false);
   EXPECT_FALSE(problem.empty());
 }

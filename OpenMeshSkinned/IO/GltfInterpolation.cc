@@ -57,8 +57,9 @@ Keys cubic_as_linear(const std::vector<double>& in, const std::vector<double>& o
       for (size_t c = 0; c < n; ++c)
         v[c] = (2 * u3 - 3 * u2 + 1) * at(i, 1, c) + (u3 - 2 * u2 + u) * dt * at(i, 2, c) +
                (-2 * u3 + 3 * u2) * at(i + 1, 1, c) + (u3 - u2) * dt * at(i + 1, 0, c);
-      // Steps too short for a float between them are left out.
-      if (s > 0 && !(float(in[i] + u * dt) > float(k.times.back()))) continue;
+      // Steps too short for a float between them and both keys are left out (times must increase).
+      if (s > 0 && !(float(in[i] + u * dt) > float(k.times.back()) && float(in[i] + u * dt) < float(in[i + 1])))
+        continue;
       push(s == 0 ? in[i] : in[i] + u * dt, v);
     }
   }

@@ -29,6 +29,14 @@ SignedMorphWeights read_signed_morph_weights(const std::string& read_path, std::
   GltfBytes bytes(doc, chunk.empty() ? nullptr : &bin, std::filesystem::absolute(read_path).parent_path(), read_path);
   try {
     const json nodes = doc.value("nodes", json::array());
+    // assimp matches a weights channel to its mesh by the node's name: a name two nodes share is ambiguous,
+    // and is left to assimp's (clamped) reading.
+    std::map<std::string, int> named;
+    for (size_t n = 0; n < nodes.size(); ++n)
+      if (nodes[n].is_object()) {
+        const std::string own = nodes[n].value("name", "");
+        ++named[own.empty() ? "nodes[" + std::to_string(n) + "]" : own];
+      }
     const json& animations = doc["animations"];
     for (size_t a = 0; a < animations.size(); ++a) {
       const json samplers = animations[a].value("samplers", json::array());
@@ -43,6 +51,7 @@ SignedMorphWeights read_signed_morph_weights(const std::string& read_path, std::
         if (std::none_of(values.begin(), values.end(), [](double w) { return w < 0.0; })) continue;
         const std::string own = nodes[size_t(node)].value("name", "");
         const std::string name = own.empty() ? "nodes[" + std::to_string(node) + "]" : own;
+        if (named[name] > 1) continue;
         out.channels[{a, name}] = {in.size(), std::move(values)};
       }
     }

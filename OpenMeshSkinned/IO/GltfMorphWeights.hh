@@ -12,7 +12,8 @@
 
 namespace OpenMeshSkinned::detail {
 
-/// The "weights" channels of a glTF file that hold a negative weight, by animation and target node.
+/// The "weights" channels of a glTF file that hold a negative weight, by animation and target node (but for
+/// nodes whose name another node shares, whose channels assimp's names cannot tell apart).
 struct SignedMorphWeights {
   struct Channel {
     size_t keys = 0;

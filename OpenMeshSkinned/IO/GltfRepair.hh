@@ -25,7 +25,8 @@ namespace OpenMeshSkinned {
  *  glTF refers to are linked into the folder under the same relative names; decoded data goes into the
  *  GLB's binary chunk, or into a file of its own beside a .gltf. Throws IOError, naming \p path, when the
  *  file requires an extension the tool cannot honour, when its compressed data cannot be decoded, or
- *  when it needs a repair that cannot be made (a resource outside the file's folder). */
+ *  when it needs a repair that cannot be made (a buffer outside the file's folder; images there are
+ *  read beside the file by the material reader, not through the copy). */
 class RepairedGltf {
 public:
   explicit RepairedGltf(const std::string& path);

@@ -248,7 +248,11 @@ ImportReport detail::import_scene(const std::string& path, const std::string& re
   }
   rep.twin_joints = joints.twins();
   finish_mesh(mesh, rep, path);
-  read_clips(scene, sn, joints, instances, target_base, read_signed_morph_weights(read_path, rep.warnings), mesh,
+  bool morph_channels = false;
+  for (unsigned a = 0; a < scene->mNumAnimations; ++a)
+    morph_channels |= scene->mAnimations[a]->mNumMorphMeshChannels > 0;
+  read_clips(scene, sn, joints, instances, target_base,
+             morph_channels ? read_signed_morph_weights(read_path, rep.warnings) : detail::SignedMorphWeights(), mesh,
              rep.warnings);
   rep.clips = clips(mesh).size();
   check_input(mesh, path, rep.warnings);

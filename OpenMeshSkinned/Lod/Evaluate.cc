@@ -56,8 +56,8 @@ std::vector<HeldOutError> evaluate_lods(const SkinnedMesh& original, const std::
   auto work = [&](bool caller) {
     // Per LOD, each vertex's nearest triangle in this thread's previous frame: the next frame's query starts
     // there (the same answers, found faster: a vertex moves little against the other surface between frames).
-    std::vector<std::vector<int>> original_hints(n_lods), lod_hints(n_lods);
     try {
+      std::vector<std::vector<int>> original_hints(n_lods), lod_hints(n_lods);
       for (size_t f = next++; f < frames.size(); f = next++) {
         const TriangleSoup original_soup = posed_soup(original, frames[f]);
         const MeasuredSurface posed(original_soup, options.samples, 1);
