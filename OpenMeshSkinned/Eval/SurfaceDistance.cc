@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
-#include <tuple>
 
 namespace OpenMeshSkinned {
 namespace {
@@ -106,85 +105,73 @@ double MeasuredSurface::distance(const Eigen::Vector3d& p) const {
 
 double MeasuredSurface::distance(const Eigen::Vector3d& p, int& triangle) const { return distance(p, triangle, -1); }
 
-double MeasuredSurface::distance(const Eigen::Vector3d& p, int& triangle, int hint) const {
-  triangle = -1;
-  if (!impl_->tree) return HUGE_VAL;
-  const Point q(p.x(), p.y(), p.z());
-  const bool hinted = hint >= 0 && hint < static_cast<int>(impl_->triangles.size());
-  const Iterator h = impl_->triangles.begin() + (hinted ? hint : 0);
-  const auto [nearest, it] =
-      hinted ? impl_->tree->closest_point_and_primitive(q, {K().construct_projected_point_3_object()(*h, q), h})
-             : impl_->tree->closest_point_and_primitive(q);
-  triangle = static_cast<int>(it - impl_->triangles.begin());
-  return std::sqrt(CGAL::squared_distance(q, nearest));
-}
-MeasuredSurface::MeasuredSurface(MeasuredSurface&&) noexcept = default;
-MeasuredSurface& MeasuredSurface::operator=(MeasuredSurface&&) noexcept = default;
-
 namespace {
 
-void one_way(const MeasuredSurface::Impl& from, const MeasuredSurface::Impl& to, double& sum_sq, double& max_d,
-             size_t& count) {
+// The nearest point of \p s (which has a tree) to \p q, searched from triangle \p hint when it is one of
+// \p s's (else from the tree's own start points); \p triangle gets the triangle it lies on.
+Point nearest_on(const MeasuredSurface::Impl& s, const Point& q, int hint, int& triangle) {
+  const bool hinted = hint >= 0 && hint < static_cast<int>(s.triangles.size());
+  const Iterator h = s.triangles.begin() + (hinted ? hint : 0);
+  const auto [nearest, it] =
+      hinted ? s.tree->closest_point_and_primitive(q, {K().construct_projected_point_3_object()(*h, q), h})
+             : s.tree->closest_point_and_primitive(q);
+  triangle = static_cast<int>(it - s.triangles.begin());
+  return nearest;
+}
+
+// \p from's samples measured to \p to. With \p hints, each vertex's query starts from its hint's triangle
+// where it has one, and the hint becomes the triangle found.
+void one_way(const MeasuredSurface::Impl& from, const MeasuredSurface::Impl& to, std::vector<int>* hints,
+             double& sum_sq, double& max_d, size_t& count) {
   if (!to.tree) return;
-  for (const Point& p : from.samples) {
-    const double d2 = to.tree->squared_distance(p);
+  if (hints) hints->resize(from.vertex_samples, -1);
+  for (size_t k = 0; k < from.samples.size(); ++k) {
+    const Point& p = from.samples[k];
+    double d2;
+    if (hints) {
+      int found = -1;
+      d2 = CGAL::squared_distance(p, nearest_on(to, p, k < hints->size() ? (*hints)[k] : -1, found));
+      if (k < hints->size()) (*hints)[k] = found;
+    } else {
+      d2 = to.tree->squared_distance(p);
+    }
     sum_sq += d2;
     max_d = std::max(max_d, std::sqrt(d2));
     ++count;
   }
 }
 
-// As one_way(), each vertex's query starting from \p hints' triangle where it has one, which it then updates.
-void one_way_hinted(const MeasuredSurface::Impl& from, const MeasuredSurface::Impl& to, std::vector<int>& hints,
-                    double& sum_sq, double& max_d, size_t& count) {
-  if (!to.tree) return;
-  hints.resize(from.vertex_samples, -1);
-  const int nt = static_cast<int>(to.triangles.size());
-  for (size_t k = 0; k < from.samples.size(); ++k) {
-    const Point& p = from.samples[k];
-    const int h = k < hints.size() ? hints[k] : -1;
-    Iterator it;
-    Point nearest;
-    if (h >= 0 && h < nt) {
-      const Iterator start = to.triangles.begin() + h;
-      std::tie(nearest, it) =
-          to.tree->closest_point_and_primitive(p, {K().construct_projected_point_3_object()(*start, p), start});
-    } else {
-      std::tie(nearest, it) = to.tree->closest_point_and_primitive(p);
-    }
-    if (k < hints.size()) hints[k] = static_cast<int>(it - to.triangles.begin());
-    const double d2 = CGAL::squared_distance(p, nearest);
-    sum_sq += d2;
-    max_d = std::max(max_d, std::sqrt(d2));
-    ++count;
-  }
+SurfaceDistance pooled(const MeasuredSurface& a, const MeasuredSurface& b, std::vector<int>* a_hints,
+                       std::vector<int>* b_hints) {
+  double sum_sq = 0.0, max_d = 0.0;
+  size_t count = 0;
+  one_way(a.impl(), b.impl(), a_hints, sum_sq, max_d, count);
+  one_way(b.impl(), a.impl(), b_hints, sum_sq, max_d, count);
+  SurfaceDistance d;
+  d.samples = count;
+  d.rms = count ? std::sqrt(sum_sq / count) : 0.0;
+  d.hausdorff = max_d;
+  return d;
 }
 
 }  // namespace
 
+double MeasuredSurface::distance(const Eigen::Vector3d& p, int& triangle, int hint) const {
+  triangle = -1;
+  if (!impl_->tree) return HUGE_VAL;
+  const Point q(p.x(), p.y(), p.z());
+  return std::sqrt(CGAL::squared_distance(q, nearest_on(*impl_, q, hint, triangle)));
+}
+MeasuredSurface::MeasuredSurface(MeasuredSurface&&) noexcept = default;
+MeasuredSurface& MeasuredSurface::operator=(MeasuredSurface&&) noexcept = default;
+
 SurfaceDistance surface_distance(const MeasuredSurface& a, const MeasuredSurface& b, std::vector<int>& a_hints,
                                  std::vector<int>& b_hints) {
-  double sum_sq = 0.0, max_d = 0.0;
-  size_t count = 0;
-  one_way_hinted(a.impl(), b.impl(), a_hints, sum_sq, max_d, count);
-  one_way_hinted(b.impl(), a.impl(), b_hints, sum_sq, max_d, count);
-  SurfaceDistance d;
-  d.samples = count;
-  d.rms = count ? std::sqrt(sum_sq / count) : 0.0;
-  d.hausdorff = max_d;
-  return d;
+  return pooled(a, b, &a_hints, &b_hints);
 }
 
 SurfaceDistance surface_distance(const MeasuredSurface& a, const MeasuredSurface& b) {
-  double sum_sq = 0.0, max_d = 0.0;
-  size_t count = 0;
-  one_way(a.impl(), b.impl(), sum_sq, max_d, count);
-  one_way(b.impl(), a.impl(), sum_sq, max_d, count);
-  SurfaceDistance d;
-  d.samples = count;
-  d.rms = count ? std::sqrt(sum_sq / count) : 0.0;
-  d.hausdorff = max_d;
-  return d;
+  return pooled(a, b, nullptr, nullptr);
 }
 
 SurfaceDistance surface_distance(const TriangleSoup& a, const TriangleSoup& b, size_t n, uint64_t seed) {

@@ -31,12 +31,13 @@ SignedMorphWeights read_signed_morph_weights(const std::string& read_path, std::
     const json nodes = doc.value("nodes", json::array());
     // assimp matches a weights channel to its mesh by the node's name: a name two nodes share is ambiguous,
     // and is left to assimp's (clamped) reading.
+    std::vector<std::string> names(nodes.size());
     std::map<std::string, int> named;
-    for (size_t n = 0; n < nodes.size(); ++n)
-      if (nodes[n].is_object()) {
-        const std::string own = nodes[n].value("name", "");
-        ++named[own.empty() ? "nodes[" + std::to_string(n) + "]" : own];
-      }
+    for (size_t n = 0; n < nodes.size(); ++n) {
+      const std::string own = nodes[n].is_object() ? nodes[n].value("name", "") : "";
+      names[n] = own.empty() ? "nodes[" + std::to_string(n) + "]" : own;
+      ++named[names[n]];
+    }
     const json& animations = doc["animations"];
     for (size_t a = 0; a < animations.size(); ++a) {
       const json samplers = animations[a].value("samplers", json::array());
@@ -49,8 +50,7 @@ SignedMorphWeights read_signed_morph_weights(const std::string& read_path, std::
         std::vector<double> values = accessor_values(doc, sampler.at("output").get<size_t>(), bytes, read_path);
         if (in.empty() || values.size() % in.size() != 0) continue;
         if (std::none_of(values.begin(), values.end(), [](double w) { return w < 0.0; })) continue;
-        const std::string own = nodes[size_t(node)].value("name", "");
-        const std::string name = own.empty() ? "nodes[" + std::to_string(node) + "]" : own;
+        const std::string& name = names[size_t(node)];
         if (named[name] > 1) continue;
         out.channels[{a, name}] = {in.size(), std::move(values)};
       }
