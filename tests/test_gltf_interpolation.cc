@@ -278,3 +278,20 @@ TEST(GltfInterpolation, CubicKeysOneFloatApartKeepTheTimesIncreasing) {
   for (size_t k = 1; k < t.size(); ++k) EXPECT_LT(float(t[k - 1]), float(t[k])) << k;
   EXPECT_EQ(float(t.back()), 11.0f);
 }
+
+// A NaN key is one line in the file's own key numbers (the rewritten keys are numbered otherwise).
+TEST(GltfInterpolation, ANonFiniteKeyIsNamedAsTheFileNumbersIt) {
+  json doc = one_sampler("STEP", {0.0f, 1.0f, NAN, 3.0f}, {0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 3, 3}, "VEC3", "translation");
+  detail::GltfBytes bytes(doc, nullptr, dir(), "nan.gltf");
+  try {
+    detail::linearize_samplers(doc, bytes, "nan.gltf");
+    FAIL() << "no error";
+  } catch (const IOError& e) {
+    EXPECT_NE(std::string(e.what()).find("nan.gltf: animation 0 sampler 0 (STEP): key 2 has the time nan"),
+              std::string::npos)
+        << e.what();
+  }
+  json inf = one_sampler("CUBICSPLINE", {0.0f, 1.0f}, {0, 0, 0, 0, INFINITY, 0}, "SCALAR", "weights");
+  detail::GltfBytes inf_bytes(inf, nullptr, dir(), "inf.gltf");
+  EXPECT_THROW(detail::linearize_samplers(inf, inf_bytes, "inf.gltf"), IOError);
+}

@@ -106,6 +106,15 @@ std::vector<std::string> linearize_samplers(json& doc, GltfBytes& bytes, const s
         throw IOError(what + " (" + interpolation + ") has " + std::to_string(out.size()) + " output values for " +
                       std::to_string(in.size()) + " keys");
       const size_t n = out.size() / per_key;
+      // Said here in the file's own key numbers: the rewritten keys are numbered otherwise.
+      for (size_t k = 0; k < in.size(); ++k)
+        if (!std::isfinite(in[k]))
+          throw IOError(what + " (" + interpolation + "): key " + std::to_string(k) + " has the time " +
+                        std::to_string(in[k]));
+      for (size_t i = 0; i < out.size(); ++i)
+        if (!std::isfinite(out[i]))
+          throw IOError(what + " (" + interpolation + "): key " + std::to_string(i / (out.size() / in.size())) +
+                        " has the non-finite value " + std::to_string(out[i]));
       bool rotation = false;
       if (anim.contains("channels") && anim["channels"].is_array())
         for (const json& ch : anim["channels"])

@@ -26,7 +26,8 @@ constexpr int kCubicSegments = 8;
  *  accessors (added through \p bytes): STEP as a ramp of kStepRampSeconds before each key, CUBICSPLINE as
  *  the spec's Hermite curve at kCubicSegments keys per interval (rotations normalised). Returns one line per
  *  rewritten kind for the user ("3 STEP samplers: ..."), empty when there was none. Throws IOError, naming
- *  \p shown_as and the sampler, when a sampler's output does not hold a whole number of values per key. */
+ *  \p shown_as and the sampler, when a sampler's output does not hold a whole number of values per key or a
+ *  key's time or value is not finite (naming the key as the file numbers it). */
 std::vector<std::string> linearize_samplers(nlohmann::json& doc, GltfBytes& bytes, const std::string& shown_as);
 
 }  // namespace OpenMeshSkinned::detail
