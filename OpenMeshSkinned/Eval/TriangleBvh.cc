@@ -1,0 +1,173 @@
+#include "OpenMeshSkinned/Eval/TriangleBvh.hh"
+
+#include "OpenMeshSkinned/Mesh/ClosestPoint.hh"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <stdexcept>
+
+namespace OpenMeshSkinned {
+namespace {
+
+constexpr int kLeaf = 4;
+// A box is passed over only when it is farther than the best by more than rounding could account for:
+// the answer must be the least (distance, index) over every triangle, whatever the order of the search.
+constexpr double kSlack = 1e-9;
+
+// A triangle while the hierarchy is split: its box centre, in floats (the split only orders them; the
+// boxes searched are computed from the triangles afterwards), and its index.
+struct Item {
+  float centre[3];
+  int id;
+};
+
+}  // namespace
+
+TriangleBvh::TriangleBvh(const TriangleSoup& soup) {
+  const int n = static_cast<int>(soup.triangles.size());
+  if (n == 0) return;
+  std::vector<Item> items;
+  items.reserve(n);
+  for (int i = 0; i < n; ++i) {
+    const auto& t = soup.triangles[i];
+    const Eigen::Vector3d &a = soup.points[t[0]], &b = soup.points[t[1]], &c = soup.points[t[2]];
+    const Eigen::Vector3d m = 0.5 * (a.cwiseMin(b).cwiseMin(c) + a.cwiseMax(b).cwiseMax(c));
+    items.push_back({{float(m.x()), float(m.y()), float(m.z())}, i});
+  }
+  nodes_.reserve(n);  // leaves hold 2 to kLeaf triangles (one for a one-triangle soup): at most n nodes
+  nodes_.push_back(Node{});
+  // Depth first, each node's children made right after it: a parent's index is below its children's.
+  struct Range {
+    int node, begin, end;
+  };
+  std::vector<Range> todo{{0, 0, n}};
+  while (!todo.empty()) {
+    const Range r = todo.back();
+    todo.pop_back();
+    if (r.end - r.begin <= kLeaf) {
+      nodes_[r.node].first = r.begin;
+      nodes_[r.node].count = r.end - r.begin;
+      continue;
+    }
+    float lo[3] = {HUGE_VALF, HUGE_VALF, HUGE_VALF}, hi[3] = {-HUGE_VALF, -HUGE_VALF, -HUGE_VALF};
+    for (int k = r.begin; k < r.end; ++k)
+      for (int i = 0; i < 3; ++i) {
+        lo[i] = std::min(lo[i], items[k].centre[i]);
+        hi[i] = std::max(hi[i], items[k].centre[i]);
+      }
+    int axis = 0;
+    for (int i = 1; i < 3; ++i)
+      if (hi[i] - lo[i] > hi[axis] - lo[axis]) axis = i;
+    const int mid = r.begin + (r.end - r.begin) / 2;
+    std::nth_element(items.begin() + r.begin, items.begin() + mid, items.begin() + r.end,
+                     [axis](const Item& a, const Item& b) {
+                       return a.centre[axis] < b.centre[axis] || (a.centre[axis] == b.centre[axis] && a.id < b.id);
+                     });
+    const int left = static_cast<int>(nodes_.size());
+    nodes_[r.node].first = left;
+    nodes_[r.node].count = 0;
+    nodes_.push_back(Node{});
+    nodes_.push_back(Node{});
+    todo.push_back({left + 1, mid, r.end});
+    todo.push_back({left, r.begin, mid});
+  }
+  slots_.resize(n);
+  slot_of_.resize(n);
+  for (int k = 0; k < n; ++k) {
+    slots_[k].id = items[k].id;
+    slot_of_[items[k].id] = k;
+  }
+  triangles_ = soup.triangles;
+  refit(soup.points);
+}
+
+void TriangleBvh::refit(const std::vector<Eigen::Vector3d>& points) {
+  for (Slot& s : slots_)
+    for (int c = 0; c < 3; ++c) {
+      const int v = triangles_[s.id][c];
+      if (v < 0 || size_t(v) >= points.size()) throw std::out_of_range("TriangleBvh::refit: too few points");
+      s.corner[c] = points[v];
+    }
+  // Children come after their parent: from the last node back, every child's box is ready before its parent's.
+  for (size_t i = nodes_.size(); i-- > 0;) {
+    Node& nd = nodes_[i];
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
+    if (nd.count > 0) {
+      for (int s = nd.first; s < nd.first + nd.count; ++s)
+        for (const Eigen::Vector3d& p : slots_[s].corner) {
+          lo = lo.cwiseMin(p);
+          hi = hi.cwiseMax(p);
+        }
+    } else {
+      for (int c = nd.first; c < nd.first + 2; ++c) {
+        lo = lo.cwiseMin(Eigen::Vector3d(nodes_[c].lo[0], nodes_[c].lo[1], nodes_[c].lo[2]));
+        hi = hi.cwiseMax(Eigen::Vector3d(nodes_[c].hi[0], nodes_[c].hi[1], nodes_[c].hi[2]));
+      }
+    }
+    for (int k = 0; k < 3; ++k) {
+      nd.lo[k] = lo[k];
+      nd.hi[k] = hi[k];
+    }
+  }
+}
+
+double TriangleBvh::box_distance2(const Node& n, const Eigen::Vector3d& q) const {
+  double d = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const double below = n.lo[i] - q[i], above = q[i] - n.hi[i];
+    if (below > 0.0)
+      d += below * below;
+    else if (above > 0.0)
+      d += above * above;
+  }
+  return d;
+}
+
+void TriangleBvh::consider(int s, const Eigen::Vector3d& q, double& best, int& best_id) const {
+  const Slot& t = slots_[s];
+  Eigen::Vector3d bary;
+  const double d = closest_barycentric(t.corner, q, bary);
+  if (!(d < HUGE_VAL)) return;  // a query that is not a number is nearest to nothing
+  if (d < best || (d == best && t.id < best_id)) {
+    best = d;
+    best_id = t.id;
+  }
+}
+
+double TriangleBvh::nearest(const Eigen::Vector3d& q, int& triangle, int hint) const {
+  triangle = -1;
+  if (slots_.empty()) return HUGE_VAL;
+  double best = HUGE_VAL;
+  int best_id = INT_MAX;
+  if (hint >= 0 && size_t(hint) < slot_of_.size()) consider(slot_of_[hint], q, best, best_id);
+  // Depth first, the nearer child on top: each level adds at most one entry, and the depth is about
+  // log2 of the triangle count (median splits).
+  struct Entry {
+    int node;
+    double d2;
+  };
+  Entry stack[128];
+  int sp = 0;
+  stack[sp++] = {0, box_distance2(nodes_[0], q)};
+  auto open = [&best](double d2) { return d2 * (1.0 - kSlack) <= best; };
+  while (sp > 0) {
+    const Entry e = stack[--sp];
+    if (!open(e.d2)) continue;
+    const Node& n = nodes_[e.node];
+    if (n.count > 0) {
+      for (int s = n.first; s < n.first + n.count; ++s) consider(s, q, best, best_id);
+      continue;
+    }
+    const double dl = box_distance2(nodes_[n.first], q), dr = box_distance2(nodes_[n.first + 1], q);
+    const Entry near = dl <= dr ? Entry{n.first, dl} : Entry{n.first + 1, dr};
+    const Entry far = dl <= dr ? Entry{n.first + 1, dr} : Entry{n.first, dl};
+    if (open(far.d2)) stack[sp++] = far;
+    if (open(near.d2)) stack[sp++] = near;
+  }
+  if (best_id == INT_MAX) return HUGE_VAL;
+  triangle = best_id;
+  return best;
+}
+
+}  // namespace OpenMeshSkinned

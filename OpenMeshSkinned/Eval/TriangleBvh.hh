@@ -1,0 +1,60 @@
+#pragma once
+/** \file TriangleBvh.hh
+ *  The nearest point of a triangle soup to a query point: a bounding-volume hierarchy over the triangles
+ *  (median splits of their centroids along the widest axis, a few triangles a leaf), searched nearer box
+ *  first. The answer is the triangle of least (squared distance, index), both as closest_barycentric()
+ *  computes them, so it does not depend on the search order or a hint: it is what trying every triangle
+ *  would give, bit for bit. A hint (a triangle near the answer, such as the one a moving point hit last
+ *  time) only makes the search shorter.
+ */
+
+#include "OpenMeshSkinned/Eval/TriangleSoup.hh"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace OpenMeshSkinned {
+
+class TriangleBvh {
+public:
+  TriangleBvh() = default;
+  /// Builds the hierarchy of \p soup's triangles (copied: the soup need not outlive it).
+  explicit TriangleBvh(const TriangleSoup& soup);
+
+  /** Moves the triangles' corners to \p points (the soup's triangles, posed again: the same indices),
+   *  keeping the hierarchy and its memory. Answers stay exact; they come slower the more the shape moved
+   *  from the one the hierarchy was split in. */
+  void refit(const std::vector<Eigen::Vector3d>& points);
+
+  bool empty() const { return slots_.empty(); }
+  size_t size() const { return slots_.size(); }
+
+  /** The squared distance from \p q to the soup, with \p triangle set to the nearest triangle's index in
+   *  the soup (-1 and infinity when there is none). \p hint: a triangle to start from (any value outside
+   *  the soup's range is ignored). */
+  double nearest(const Eigen::Vector3d& q, int& triangle, int hint = -1) const;
+
+private:
+  struct Node {
+    double lo[3], hi[3];
+    int32_t first;  // a leaf: its first slot; else: its children, first and first + 1
+    int32_t count;  // a leaf: its slots; 0: an inner node
+  };
+  struct Slot {
+    Eigen::Vector3d corner[3];
+    int id;  // the triangle's index in the soup
+  };
+  double box_distance2(const Node& n, const Eigen::Vector3d& q) const;
+  // Considers slot \p s for \p q: takes it when it is nearer (ties: the lower index).
+  void consider(int s, const Eigen::Vector3d& q, double& best, int& best_id) const;
+
+  std::vector<Node> nodes_;
+  std::vector<Slot> slots_;                    // in leaf order
+  std::vector<int> slot_of_;                   // per soup triangle, its slot
+  std::vector<std::array<int, 3>> triangles_;  // the soup's, to refit from
+};
+
+}  // namespace OpenMeshSkinned

@@ -1,0 +1,144 @@
+#include <OpenMeshSkinned/Eval/SurfaceDistance.hh>
+#include <OpenMeshSkinned/Eval/TriangleBvh.hh>
+#include <OpenMeshSkinned/Mesh/ClosestPoint.hh>
+#include <OpenMeshSkinned/Mesh/Procedural.hh>
+#include <OpenMeshSkinned/Skin/SkinProperties.hh>
+
+#include <gtest/gtest.h>
+
+#include <climits>
+#include <cmath>
+#include <random>
+
+using namespace OpenMeshSkinned;
+
+namespace {
+
+// What trying every triangle gives: the least (squared distance, index).
+double brute_force(const TriangleSoup& s, const Eigen::Vector3d& q, int& triangle) {
+  double best = HUGE_VAL;
+  triangle = -1;
+  for (size_t i = 0; i < s.triangles.size(); ++i) {
+    const auto& t = s.triangles[i];
+    const Eigen::Vector3d c[3] = {s.points[t[0]], s.points[t[1]], s.points[t[2]]};
+    Eigen::Vector3d bary;
+    const double d = closest_barycentric(c, q, bary);
+    if (d < best) {
+      best = d;
+      triangle = int(i);
+    }
+  }
+  return best;
+}
+
+// The bending cylinder at a time \p t of its clip, with a few degenerate and repeated triangles added.
+TriangleSoup cylinder(double t) {
+  const SkinnedMesh mesh = make_bending_cylinder(12, 24);
+  TriangleSoup s = posed_soup(mesh, sample_pose(skeleton(mesh), clips(mesh).at(0), t * clips(mesh)[0].duration));
+  const int n = int(s.triangles.size());
+  s.triangles.push_back({0, 0, 1});                                                  // a segment
+  s.triangles.push_back({2, 2, 2});                                                  // a point
+  s.triangles.push_back(s.triangles[n / 2]);                                         // the same triangle twice
+  s.triangles.push_back({s.triangles[7][1], s.triangles[7][2], s.triangles[7][0]});  // rotated
+  return s;
+}
+
+std::vector<Eigen::Vector3d> queries(const TriangleSoup& s, int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Eigen::Vector3d> q;
+  for (int i = 0; i < n; ++i) {
+    // Near the surface, far from it, and on it.
+    const Eigen::Vector3d& p = s.points[rng() % s.points.size()];
+    const double reach = i % 3 == 0 ? 0.01 : (i % 3 == 1 ? 0.3 : 3.0);
+    q.push_back(i % 10 == 9 ? p : Eigen::Vector3d(p + reach * Eigen::Vector3d(u(rng), u(rng), u(rng))));
+  }
+  return q;
+}
+
+}  // namespace
+
+TEST(TriangleBvh, FindsWhatTryingEveryTriangleFindsBitForBit) {
+  const TriangleSoup s = cylinder(0.4);
+  const TriangleBvh bvh(s);
+  EXPECT_EQ(bvh.size(), s.triangles.size());
+  for (const Eigen::Vector3d& q : queries(s, 600, 1)) {
+    int expected = -1, found = -1;
+    const double d = brute_force(s, q, expected);
+    EXPECT_EQ(bvh.nearest(q, found), d);
+    EXPECT_EQ(found, expected);
+  }
+}
+
+TEST(TriangleBvh, AHintChangesNothingButTheSearch) {
+  const TriangleSoup s = cylinder(0.9);
+  const TriangleBvh bvh(s);
+  std::mt19937 rng(4);
+  std::uniform_int_distribution<int> any(-3, int(s.triangles.size()) + 3);  // out of range too
+  for (const Eigen::Vector3d& q : queries(s, 400, 2)) {
+    int plain = -1, hinted = -1;
+    const double d = bvh.nearest(q, plain);
+    EXPECT_EQ(bvh.nearest(q, hinted, any(rng)), d);
+    EXPECT_EQ(hinted, plain);
+    EXPECT_EQ(bvh.nearest(q, hinted, plain), d);
+    EXPECT_EQ(hinted, plain);
+  }
+}
+
+TEST(TriangleBvh, TiesGoToTheLowerIndex) {
+  const TriangleSoup s = cylinder(0);
+  const TriangleBvh bvh(s);
+  const int n = int(s.triangles.size()) - 4;
+  const auto& t = s.triangles[n / 2];  // repeated at n + 2
+  const Eigen::Vector3d centre = (s.points[t[0]] + s.points[t[1]] + s.points[t[2]]) / 3.0;
+  int found = -1;
+  EXPECT_EQ(bvh.nearest(centre, found, n + 2), 0.0);
+  EXPECT_EQ(found, n / 2);
+}
+
+TEST(TriangleBvh, ARefittedHierarchyAnswersAsAFreshOne) {
+  const TriangleSoup rest = cylinder(0), bent = cylinder(0.9);
+  ASSERT_GT((rest.points.back() - bent.points.back()).norm(), 0.1);  // the pose moves it
+  TriangleBvh moved(rest);
+  moved.refit(bent.points);
+  const TriangleBvh fresh(bent);
+  for (const Eigen::Vector3d& q : queries(bent, 400, 3)) {
+    int a = -1, b = -1, expected = -1;
+    const double d = brute_force(bent, q, expected);
+    EXPECT_EQ(moved.nearest(q, a), d);
+    EXPECT_EQ(fresh.nearest(q, b), d);
+    EXPECT_EQ(a, expected);
+    EXPECT_EQ(b, expected);
+  }
+  EXPECT_THROW(moved.refit(std::vector<Eigen::Vector3d>(3)), std::out_of_range);
+}
+
+TEST(TriangleBvh, NothingToFind) {
+  int t = 7;
+  EXPECT_EQ(TriangleBvh().nearest(Eigen::Vector3d::Zero(), t), HUGE_VAL);
+  EXPECT_EQ(t, -1);
+  const TriangleSoup s = cylinder(0);
+  const TriangleBvh bvh(s);
+  EXPECT_EQ(bvh.nearest(Eigen::Vector3d(NAN, 0.0, 0.0), t), HUGE_VAL);
+  EXPECT_EQ(t, -1);
+  TriangleSoup one;
+  one.points = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  one.triangles = {{0, 1, 2}};
+  EXPECT_DOUBLE_EQ(TriangleBvh(one).nearest(Eigen::Vector3d(0.25, 0.25, 2.0), t), 4.0);
+  EXPECT_EQ(t, 0);
+}
+
+TEST(MeasuredSurface, PosedAgainItMeasuresAsOneBuiltInThatPose) {
+  const TriangleSoup rest = cylinder(0), bent = cylinder(0.9), other = cylinder(0.4);
+  MeasuredSurface reposed(rest, 2000, 5);
+  reposed.repose(bent);
+  const MeasuredSurface fresh(bent, 2000, 5), against(other, 2000, 6);
+  const SurfaceDistance a = surface_distance(reposed, against), b = surface_distance(fresh, against);
+  EXPECT_GT(a.rms, 0.0);
+  EXPECT_EQ(a.rms, b.rms);
+  EXPECT_EQ(a.hausdorff, b.hausdorff);
+  EXPECT_EQ(a.samples, b.samples);
+  TriangleSoup fewer = bent;
+  fewer.triangles.pop_back();
+  EXPECT_THROW(reposed.repose(fewer), std::invalid_argument);
+}
