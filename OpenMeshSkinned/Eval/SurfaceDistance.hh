@@ -1,10 +1,11 @@
 #pragma once
 /** \file SurfaceDistance.hh
  *  Metro-style distance between two triangle surfaces (Cignoni et al.): points sampled by area on each
- *  surface, plus its vertices, each measured to the nearest point of the other surface through CGAL's
- *  AABB tree. Symmetric: both directions are pooled.
+ *  surface, plus its vertices, each measured to the nearest point of the other surface (TriangleBvh.hh).
+ *  Symmetric: both directions are pooled.
  */
 
+#include "OpenMeshSkinned/Eval/TriangleSoup.hh"
 #include "OpenMeshSkinned/Skin/LinearBlendSkinning.hh"
 
 #include <Eigen/Core>
@@ -16,34 +17,28 @@
 
 namespace OpenMeshSkinned {
 
-/// A triangle soup: positions and index triples.
-struct TriangleSoup {
-  std::vector<Eigen::Vector3d> points;
-  std::vector<std::array<int, 3>> triangles;
-};
-
 struct SurfaceDistance {
   double rms = 0.0;        ///< root mean square of all sample distances (both directions)
   double hausdorff = 0.0;  ///< largest sample distance (both directions)
   size_t samples = 0;
 };
 
-/** A surface ready to be measured against, any number of times: its triangles in an AABB tree, built once,
- *  and its own samples (its vertices plus \p samples points by area, drawn with \p seed). A posed original
- *  is built once per frame and measured against every LOD and method; safe to share between threads. */
+/** A surface ready to be measured against, any number of times: its triangles' search hierarchy, built
+ *  once, and its own samples (its vertices plus \p samples points by area, drawn with \p seed). A posed
+ *  original is built once per frame and measured against every LOD and method; safe to share between
+ *  threads. */
 class MeasuredSurface {
 public:
-  /// Every triangle gives a start point to CGAL's search for the nearest point (the default).
-  static constexpr size_t kAllHintPoints = static_cast<size_t>(-1);
-  /** \p hint_points: how many of the triangles, evenly strided, give a start point to the search (CGAL's
-   *  kd-tree of hints, built here). Many queries pay for a start point on every triangle; a few thousand
-   *  queries on a large surface are answered as fast from a few thousand start points, and the tree of all
-   *  of them would cost more than the queries. 0: none (queries without a hint start from the first
-   *  triangle). The nearest points found do not depend on it. */
-  MeasuredSurface(const TriangleSoup& soup, size_t samples, uint64_t seed, size_t hint_points = kAllHintPoints);
+  MeasuredSurface(const TriangleSoup& soup, size_t samples, uint64_t seed);
   ~MeasuredSurface();
   MeasuredSurface(MeasuredSurface&&) noexcept;
   MeasuredSurface& operator=(MeasuredSurface&&) noexcept;
+
+  /** The same surface in another pose: \p soup has the triangles it was built with (same indices) and
+   *  moved points. Its samples are drawn again as the constructor would draw them, and the search hierarchy
+   *  is moved rather than built again (no allocation for it), so every distance is what a surface built
+   *  from \p soup would give. Throws std::invalid_argument for a different triangle count. */
+  void repose(const TriangleSoup& soup);
 
   /// Distance from \p p to the nearest point of the surface (infinity for a surface without triangles).
   double distance(const Eigen::Vector3d& p) const;
@@ -65,9 +60,9 @@ SurfaceDistance surface_distance(const MeasuredSurface& a, const MeasuredSurface
 
 /** The same distance, each vertex's query starting from the triangle it hit before: \p a_hints holds, per
  *  vertex of \p a, the triangle of \p b nearest to it last time (-1 or missing: none), and is updated;
- *  \p b_hints the same for \p b's vertices (area samples fall elsewhere in every pose, and keep the surface's
- *  own start points). For the same surfaces measured again in another pose (the frames of a clip): the
- *  numbers of surface_distance(a, b), found faster. */
+ *  \p b_hints the same for \p b's vertices (area samples fall elsewhere in every pose and are searched
+ *  without one). For the same surfaces measured again in another pose (the frames of a clip): the numbers
+ *  of surface_distance(a, b), found faster. */
 SurfaceDistance surface_distance(const MeasuredSurface& a, const MeasuredSurface& b, std::vector<int>& a_hints,
                                  std::vector<int>& b_hints);
 

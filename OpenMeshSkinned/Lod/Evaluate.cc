@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <atomic>
 #include <exception>
+#include <functional>
+#include <memory>
 #include <mutex>
 #include <stdexcept>
 #include <thread>
@@ -32,8 +34,8 @@ std::vector<float> vertex_errors(const TriangleSoup& original, const MeasuredSur
 
 }  // namespace
 
-// Frame by frame, threads taking frames in turn: the posed original's surface (tree and samples) is built
-// once per frame and measured against every LOD; sums are taken in frame order, so the numbers do not
+// Frame by frame, threads taking frames in turn: the posed original's surface (hierarchy and samples) is
+// posed once per frame and measured against every LOD; sums are taken in frame order, so the numbers do not
 // depend on the thread count. Only the calling thread reports progress (callbacks may not be thread-safe).
 std::vector<HeldOutError> evaluate_lods(const SkinnedMesh& original, const std::vector<const SkinnedMesh*>& lods,
                                         const std::vector<Pose>& frames,
@@ -58,15 +60,28 @@ std::vector<HeldOutError> evaluate_lods(const SkinnedMesh& original, const std::
     // there (the same answers, found faster: a vertex moves little against the other surface between frames).
     try {
       std::vector<std::vector<int>> original_hints(n_lods), lod_hints(n_lods);
+      // This thread's surfaces, built at its first frame and posed again at the next (the same numbers as
+      // built afresh, without building the original's hierarchy again every frame).
+      std::unique_ptr<MeasuredSurface> posed;
+      std::vector<std::unique_ptr<MeasuredSurface>> lod_surfaces(n_lods);
+      auto pose_surface = [](std::unique_ptr<MeasuredSurface>& surface, const TriangleSoup& soup, size_t n,
+                             uint64_t seed) {
+        if (surface)
+          surface->repose(soup);
+        else
+          surface = std::make_unique<MeasuredSurface>(soup, n, seed);
+        return std::cref(*surface);
+      };
       for (size_t f = next++; f < frames.size(); f = next++) {
         const TriangleSoup original_soup = posed_soup(original, frames[f]);
-        const MeasuredSurface posed(original_soup, options.samples, 1);
+        const MeasuredSurface& original_surface = pose_surface(posed, original_soup, options.samples, 1);
         for (size_t i = 0; i < n_lods; ++i) {
           const TriangleSoup lod =
               posed_soup(*lods[i], lod_frames.empty() || lod_frames[i].empty() ? frames[f] : lod_frames[i][f]);
-          const MeasuredSurface lod_surface(lod, options.samples, 0x9E3779B97F4A7C16ull);
-          d[f * n_lods + i] = surface_distance(posed, lod_surface, original_hints[i], lod_hints[i]);
-          if (per_vertex) vd[f * n_lods + i] = vertex_errors(original_soup, posed, lod, lod_surface, diag);
+          const MeasuredSurface& lod_surface =
+              pose_surface(lod_surfaces[i], lod, options.samples, 0x9E3779B97F4A7C16ull);
+          d[f * n_lods + i] = surface_distance(original_surface, lod_surface, original_hints[i], lod_hints[i]);
+          if (per_vertex) vd[f * n_lods + i] = vertex_errors(original_soup, original_surface, lod, lod_surface, diag);
         }
         ++done;
         if (caller) callbacks.report("measuring the held-out error", double(done) / frames.size());

@@ -110,13 +110,23 @@ struct Hit {
   Eigen::Vector3d bary;
 };
 
-// Runs work(j) for j in [0, n) on up to \p threads threads; each j is done by exactly one of them.
+// Runs work(t, j) for j in [0, n) on up to \p threads threads, t the thread's number; each j is done by
+// exactly one of them.
 template <typename Work>
 void for_each_pose(size_t n, int threads, Work work) {
   std::atomic<size_t> next{0};
-  run_on_threads(std::min<int>(threads, int(n)), [&](int) {
-    for (size_t j = next++; j < n; j = next++) work(j);
+  run_on_threads(std::min<int>(threads, int(n)), [&](int t) {
+    for (size_t j = next++; j < n; j = next++) work(t, j);
   });
+}
+
+// A surface per thread, built at the thread's first pose and posed again at the next.
+const MeasuredSurface& posed_surface(std::unique_ptr<MeasuredSurface>& surface, const TriangleSoup& soup) {
+  if (surface)
+    surface->repose(soup);
+  else
+    surface = std::make_unique<MeasuredSurface>(soup, 0, 1);
+  return *surface;
 }
 
 // The faces that turn by more than 90 degrees, in some pose, between \p a and \p b (posed positions).
@@ -177,7 +187,8 @@ void find_pose_targets(const SkinnedMesh& lod, const SkinnedMesh& original, cons
   pt.target.assign(np, std::vector<Eigen::Vector3d>(nv));
   pt.has_target.assign(np, std::vector<char>(nv, 0));
   pt.sample_at.assign(np, {});
-  for_each_pose(np, threads, [&](size_t j) {
+  std::vector<std::unique_ptr<MeasuredSurface>> surfaces(std::max(1, threads));
+  for_each_pose(np, threads, [&](int t, size_t j) {
     TriangleSoup posed;
     posed.points = skin_positions(original, poses[j]);
     posed.triangles = triangles;
@@ -191,9 +202,7 @@ void find_pose_targets(const SkinnedMesh& lod, const SkinnedMesh& original, cons
         sp.push_back((posed.points[T[0]] + posed.points[T[1]] + posed.points[T[2]]) / 3.0);
       }
     }
-    // A few start points per LOD vertex: the tree of one per triangle of a large original cost more than
-    // the LOD's queries.
-    const MeasuredSurface surface(posed, 0, 1, std::max<size_t>(1024, 4 * lod.n_vertices()));
+    const MeasuredSurface& surface = posed_surface(surfaces[t], posed);
     const std::vector<Eigen::Vector3d> y = skin_positions(lod, poses[j]);
     for (auto vh : lod.vertices()) {
       int tri = -1;
@@ -210,13 +219,13 @@ void find_pose_targets(const SkinnedMesh& lod, const SkinnedMesh& original, cons
 }
 
 // The original's samples onto the posed LOD, pose by pose on the threads.
-void project_samples(const SkinnedMesh& lod, const std::vector<Pose>& poses, const PoseTargets& pt, int round,
-                     int threads, std::vector<std::vector<Hit>>& hits) {
-  for_each_pose(poses.size(), threads, [&](size_t j) {
+void project_samples(const SkinnedMesh& lod, const std::vector<Pose>& poses, const PoseTargets& pt, int threads,
+                     std::vector<std::vector<Hit>>& hits) {
+  std::vector<std::unique_ptr<MeasuredSurface>> surfaces(std::max(1, threads));
+  for_each_pose(poses.size(), threads, [&](int t, size_t j) {
     const TriangleSoup lsoup = posed_soup(lod, poses[j]);
-    // After the first round, last round's triangle starts each search (the LOD moved little since): the
-    // search tree's own start points are not needed.
-    const MeasuredSurface lsurf(lsoup, 0, 1, round == 0 ? MeasuredSurface::kAllHintPoints : 0);
+    // After the first round, last round's triangle starts each search (the LOD moved little since).
+    const MeasuredSurface& lsurf = posed_surface(surfaces[t], lsoup);
     hits[j].resize(pt.samples.size(), Hit{-1, {-1, -1, -1}, Eigen::Vector3d::Zero()});
     for (size_t s = 0; s < pt.samples.size(); ++s) {
       Hit& h = hits[j][s];
@@ -305,7 +314,7 @@ RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const
   for (int round = 0; round < settings.rounds; ++round) {
     std::vector<Eigen::Vector3d> x(nv);
     for (auto vh : lod.vertices()) x[vh.idx()] = to_eigen(lod.point(vh));
-    project_samples(lod, poses, pt, round, threads, hits);
+    project_samples(lod, poses, pt, threads, hits);
     Normal ne(pattern, nv);
     add_residuals(lod, pt, hits, affine, x, ne);
     const double rms = std::sqrt(ne.sum_sq / std::max<size_t>(1, ne.n));

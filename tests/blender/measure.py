@@ -7,7 +7,7 @@ original's rest-pose bounding-box diagonal.
 How it differs, and why the test allows 10 %: Blender poses the character from its actions' f-curves (quaternion
 keys blended per component and normalised) where the library slerps the exporter's per-frame samples, and the
 held-out frames fall between frames; the samples come from NumPy's generator, not the library's; the nearest
-points come from mathutils' BVH tree rather than CGAL's AABB tree (both exact)."""
+points come from mathutils' BVH tree rather than the library's TriangleBvh (both exact)."""
 
 import bpy
 import numpy
