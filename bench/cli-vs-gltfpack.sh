@@ -4,9 +4,11 @@
 # gltfpack simplifies first; ours is asked for gltfpack's achieved triangle count with --faces.
 #
 #   bench/cli-vs-gltfpack.sh [RATIO] [RUNS]      (defaults 0.01 and 3; needs scripts/build and scripts/setup)
+#   OMSK_CHARACTER=human4 bench/cli-vs-gltfpack.sh 0.01 1       (the human subdivided once more: 955,392)
 #
 # The input is the human workload of omsk-bench (Testwuson Loop-subdivided three times, 238,848
-# triangles, its three clips), written by `omsk-bench --write human FILE`.
+# triangles, its three clips), written by `omsk-bench --write human FILE`, or the character
+# OMSK_CHARACTER names (`omsk-bench --help` lists them).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ratio=${1:-0.01}
@@ -20,7 +22,8 @@ done
 [ -x /usr/bin/time ] || { echo "cli-vs-gltfpack: GNU time (/usr/bin/time) is missing: apt-get install time" >&2; exit 1; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-"$bench" --write human "$work/human.glb"
+character=${OMSK_CHARACTER:-human}
+"$bench" --write "$character" "$work/human.glb"
 
 # Runs a command RUNS times; prints "median_seconds peak_kb" (peak: the largest over the runs).
 measure() {
@@ -40,7 +43,7 @@ read -r pack_s pack_kb < <(measure "${pack[@]}")
 faces=$(grep -o 'output: 1 mesh primitives ([0-9]* triangles' "$work/pack.log" | grep -o '[0-9]* triangles' | cut -d' ' -f1)
 [ -n "$faces" ] || { echo "cli-vs-gltfpack: could not read gltfpack's triangle count" >&2; cat "$work/pack.log" >&2; exit 1; }
 
-echo "input: omsk-bench human (238,848 triangles), gltfpack -si $ratio reached $faces triangles; median of $runs runs"
+echo "input: omsk-bench $character ($(grep -o 'input: 1 mesh primitives ([0-9]* triangles' "$work/pack.log" | grep -o '[0-9]* triangles')), gltfpack -si $ratio reached $faces triangles; median of $runs runs"
 printf '%-44s %9s %9s %10s %10s\n' "command" "seconds" "peak MB" "time x" "memory x"
 row() {
   local name=$1 s=$2 kb=$3
