@@ -43,6 +43,25 @@ TriangleSoup cylinder(double t) {
   return s;
 }
 
+// Points on the soup's triangles and on their edges, as the measures draw them (area samples, a LOD
+// vertex's nearest point on the original): where ties between triangles sharing an edge are decided by the
+// last bits of closest_barycentric().
+std::vector<Eigen::Vector3d> on_surface(const TriangleSoup& s, int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<Eigen::Vector3d> q;
+  for (int i = 0; i < n; ++i) {
+    const auto& t = s.triangles[rng() % (s.triangles.size() - 4)];
+    double r1 = u(rng), r2 = i % 2 ? 1.0 - r1 : u(rng);  // odd: on the edge from corner 1 to corner 2
+    if (r1 + r2 > 1.0) {
+      r1 = 1.0 - r1;
+      r2 = 1.0 - r2;
+    }
+    q.push_back(s.points[t[0]] + r1 * (s.points[t[1]] - s.points[t[0]]) + r2 * (s.points[t[2]] - s.points[t[0]]));
+  }
+  return q;
+}
+
 std::vector<Eigen::Vector3d> queries(const TriangleSoup& s, int n, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -67,6 +86,23 @@ TEST(TriangleBvh, FindsWhatTryingEveryTriangleFindsBitForBit) {
     const double d = brute_force(s, q, expected);
     EXPECT_EQ(bvh.nearest(q, found), d);
     EXPECT_EQ(found, expected);
+  }
+}
+
+TEST(TriangleBvh, OnTheSurfaceAndFarFromTheOriginItStillFindsWhatTryingEveryTriangleFinds) {
+  for (double offset : {0.0, 1e6}) {
+    TriangleSoup s = cylinder(0.7);
+    for (auto& p : s.points) p += Eigen::Vector3d(offset, -offset, 0.5 * offset);
+    const TriangleBvh bvh(s);
+    int hint_source = 0;
+    for (const Eigen::Vector3d& q : on_surface(s, 2000, 11)) {
+      int expected = -1, found = -1, hinted = -1;
+      const double d = brute_force(s, q, expected);
+      EXPECT_EQ(bvh.nearest(q, found), d) << "offset " << offset;
+      EXPECT_EQ(found, expected) << "offset " << offset;
+      EXPECT_EQ(bvh.nearest(q, hinted, (hint_source += 37) % int(s.triangles.size())), d);
+      EXPECT_EQ(hinted, expected);
+    }
   }
 }
 
@@ -110,7 +146,29 @@ TEST(TriangleBvh, ARefittedHierarchyAnswersAsAFreshOne) {
     EXPECT_EQ(a, expected);
     EXPECT_EQ(b, expected);
   }
+  // Too few points: refused before anything moves.
   EXPECT_THROW(moved.refit(std::vector<Eigen::Vector3d>(3)), std::out_of_range);
+  for (const Eigen::Vector3d& q : queries(bent, 50, 4)) {
+    int a = -1, expected = -1;
+    EXPECT_EQ(moved.nearest(q, a), brute_force(bent, q, expected));
+    EXPECT_EQ(a, expected);
+  }
+}
+
+TEST(TriangleBvh, BadCornersAreRefusedOrSkipped) {
+  TriangleSoup s = cylinder(0);
+  TriangleSoup bad = s;
+  bad.triangles.push_back({0, 1, int(s.points.size())});
+  EXPECT_THROW(TriangleBvh{bad}, std::out_of_range);
+  // A corner that is not a number: its triangles are never the nearest; the others are found as before.
+  s.points[3] = Eigen::Vector3d(NAN, 0.0, 0.0);
+  const TriangleBvh bvh(s);
+  for (const Eigen::Vector3d& q : queries(s, 200, 6)) {
+    int expected = -1, found = -1;
+    const double d = brute_force(s, q, expected);
+    EXPECT_EQ(bvh.nearest(q, found), d);
+    EXPECT_EQ(found, expected);
+  }
 }
 
 TEST(TriangleBvh, NothingToFind) {
@@ -138,7 +196,9 @@ TEST(MeasuredSurface, PosedAgainItMeasuresAsOneBuiltInThatPose) {
   EXPECT_EQ(a.rms, b.rms);
   EXPECT_EQ(a.hausdorff, b.hausdorff);
   EXPECT_EQ(a.samples, b.samples);
-  TriangleSoup fewer = bent;
+  TriangleSoup fewer = bent, other_triangles = bent;
   fewer.triangles.pop_back();
   EXPECT_THROW(reposed.repose(fewer), std::invalid_argument);
+  std::swap(other_triangles.triangles[0][0], other_triangles.triangles[0][1]);
+  EXPECT_THROW(reposed.repose(other_triangles), std::invalid_argument);
 }

@@ -64,7 +64,7 @@ MeasuredSurface::MeasuredSurface(const TriangleSoup& soup, size_t n, uint64_t se
 }
 
 void MeasuredSurface::repose(const TriangleSoup& soup) {
-  if (soup.triangles.size() != impl_->triangles)
+  if (soup.triangles.size() != impl_->triangles || (impl_->triangles && soup.triangles != impl_->bvh.triangles()))
     throw std::invalid_argument("MeasuredSurface::repose: not the triangles it was built with");
   std::mt19937_64 rng(impl_->seed);
   impl_->samples = samples(soup, impl_->area_samples, rng, impl_->vertex_samples);

@@ -25,8 +25,8 @@ struct SurfaceDistance {
 
 /** A surface ready to be measured against, any number of times: its triangles' search hierarchy, built
  *  once, and its own samples (its vertices plus \p samples points by area, drawn with \p seed). A posed
- *  original is built once per frame and measured against every LOD and method; safe to share between
- *  threads. */
+ *  original is built (or posed again, repose()) once per frame and measured against every LOD and method;
+ *  safe to share between threads. */
 class MeasuredSurface {
 public:
   MeasuredSurface(const TriangleSoup& soup, size_t samples, uint64_t seed);
@@ -37,7 +37,7 @@ public:
   /** The same surface in another pose: \p soup has the triangles it was built with (same indices) and
    *  moved points. Its samples are drawn again as the constructor would draw them, and the search hierarchy
    *  is moved rather than built again (no allocation for it), so every distance is what a surface built
-   *  from \p soup would give. Throws std::invalid_argument for a different triangle count. */
+   *  from \p soup would give. Throws std::invalid_argument for other triangles. */
   void repose(const TriangleSoup& soup);
 
   /// Distance from \p p to the nearest point of the surface (infinity for a surface without triangles).

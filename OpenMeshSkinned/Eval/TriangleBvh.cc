@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace OpenMeshSkinned {
@@ -14,6 +15,7 @@ constexpr int kLeaf = 4;
 // A box is passed over only when it is farther than the best by more than rounding could account for:
 // the answer must be the least (distance, index) over every triangle, whatever the order of the search.
 constexpr double kSlack = 1e-9;
+constexpr double kMarginUlps = 16.0;
 
 // A triangle while the hierarchy is split: its box centre, in floats (the split only orders them; the
 // boxes searched are computed from the triangles afterwards), and its index.
@@ -27,13 +29,31 @@ struct Item {
 TriangleBvh::TriangleBvh(const TriangleSoup& soup) {
   const int n = static_cast<int>(soup.triangles.size());
   if (n == 0) return;
+  for (const auto& t : soup.triangles)
+    for (int v : t) {
+      if (v < 0 || size_t(v) >= soup.points.size()) throw std::out_of_range("TriangleBvh: a corner index out of range");
+      max_index_ = std::max(max_index_, v);
+    }
+  // Centres relative to the soup's middle, so that floats still order them far from the origin.
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
+  for (const auto& t : soup.triangles)
+    for (int v : t) {
+      lo = lo.cwiseMin(soup.points[v]);
+      hi = hi.cwiseMax(soup.points[v]);
+    }
+  const Eigen::Vector3d middle = (lo.array().isFinite() && hi.array().isFinite()).all()
+                                     ? Eigen::Vector3d(0.5 * (lo + hi))
+                                     : Eigen::Vector3d::Zero();
   std::vector<Item> items;
   items.reserve(n);
   for (int i = 0; i < n; ++i) {
     const auto& t = soup.triangles[i];
     const Eigen::Vector3d &a = soup.points[t[0]], &b = soup.points[t[1]], &c = soup.points[t[2]];
-    const Eigen::Vector3d m = 0.5 * (a.cwiseMin(b).cwiseMin(c) + a.cwiseMax(b).cwiseMax(c));
-    items.push_back({{float(m.x()), float(m.y()), float(m.z())}, i});
+    const Eigen::Vector3d m = 0.5 * (a.cwiseMin(b).cwiseMin(c) + a.cwiseMax(b).cwiseMax(c)) - middle;
+    Item item{{float(m.x()), float(m.y()), float(m.z())}, i};
+    for (float& x : item.centre)
+      if (std::isnan(x)) x = HUGE_VALF;  // the split's order must stay a strict weak order
+    items.push_back(item);
   }
   nodes_.reserve(n);  // leaves hold 2 to kLeaf triangles (one for a one-triangle soup): at most n nodes
   nodes_.push_back(Node{});
@@ -83,12 +103,10 @@ TriangleBvh::TriangleBvh(const TriangleSoup& soup) {
 }
 
 void TriangleBvh::refit(const std::vector<Eigen::Vector3d>& points) {
+  if (!slots_.empty() && size_t(max_index_) >= points.size())
+    throw std::out_of_range("TriangleBvh::refit: fewer points than the triangles use");
   for (Slot& s : slots_)
-    for (int c = 0; c < 3; ++c) {
-      const int v = triangles_[s.id][c];
-      if (v < 0 || size_t(v) >= points.size()) throw std::out_of_range("TriangleBvh::refit: too few points");
-      s.corner[c] = points[v];
-    }
+    for (int c = 0; c < 3; ++c) s.corner[c] = points[triangles_[s.id][c]];
   // Children come after their parent: from the last node back, every child's box is ready before its parent's.
   for (size_t i = nodes_.size(); i-- > 0;) {
     Node& nd = nodes_[i];
@@ -99,6 +117,15 @@ void TriangleBvh::refit(const std::vector<Eigen::Vector3d>& points) {
           lo = lo.cwiseMin(p);
           hi = hi.cwiseMax(p);
         }
+      // closest_barycentric() rebuilds the nearest point from the corners: it may land a few units in the
+      // last place outside their box, nearer than the box says, which a relative slack cannot cover when
+      // the distance is near zero (a query on the surface). The margin keeps every such point inside.
+      const double margin = kMarginUlps * std::numeric_limits<double>::epsilon() *
+                            std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
+      if (std::isfinite(margin)) {
+        lo.array() -= margin;
+        hi.array() += margin;
+      }
     } else {
       for (int c = nd.first; c < nd.first + 2; ++c) {
         lo = lo.cwiseMin(Eigen::Vector3d(nodes_[c].lo[0], nodes_[c].lo[1], nodes_[c].lo[2]));

@@ -21,15 +21,19 @@ namespace OpenMeshSkinned {
 class TriangleBvh {
 public:
   TriangleBvh() = default;
-  /// Builds the hierarchy of \p soup's triangles (copied: the soup need not outlive it).
+  /// Builds the hierarchy of \p soup's triangles (copied: the soup need not outlive it). Throws
+  /// std::out_of_range for a corner index outside its points.
   explicit TriangleBvh(const TriangleSoup& soup);
 
   /** Moves the triangles' corners to \p points (the soup's triangles, posed again: the same indices),
    *  keeping the hierarchy and its memory. Answers stay exact; they come slower the more the shape moved
-   *  from the one the hierarchy was split in. */
+   *  from the one the hierarchy was split in. Throws std::out_of_range, changing nothing, when \p points
+   *  has fewer points than the triangles use. */
   void refit(const std::vector<Eigen::Vector3d>& points);
 
   bool empty() const { return slots_.empty(); }
+  /// The soup's triangles it was built from (what refit() poses again).
+  const std::vector<std::array<int, 3>>& triangles() const { return triangles_; }
   size_t size() const { return slots_.size(); }
 
   /** The squared distance from \p q to the soup, with \p triangle set to the nearest triangle's index in
@@ -55,6 +59,7 @@ private:
   std::vector<Slot> slots_;                    // in leaf order
   std::vector<int> slot_of_;                   // per soup triangle, its slot
   std::vector<std::array<int, 3>> triangles_;  // the soup's, to refit from
+  int max_index_ = 0;                          // the largest corner index they use
 };
 
 }  // namespace OpenMeshSkinned

@@ -177,7 +177,7 @@ struct PoseTargets {
   std::vector<std::vector<char>> has_target;
 };
 
-// Per pose, on threads taking poses in turn (a search tree each, so at most `threads` trees at once):
+// Per pose, on threads taking poses in turn (each thread one search hierarchy, posed again pose by pose):
 // the samples posed, and where each LOD vertex lies on the posed original, found once from the
 // decimated LOD; the LOD must not leave those points. (Found in the rest shape instead, a vertex where
 // two parts touch at rest, a helmet on a head, could be tied to the wrong one.)

@@ -8,7 +8,7 @@
  *  Residuals, in every example pose: each original vertex and triangle centroid to its closest point on the
  *  posed LOD (the LOD must cover the original; found again each round), and each LOD vertex to the point of
  *  the posed original nearest to it as decimated (the LOD must not leave the original; found once per
- *  pose, one search tree at a time), plus a small pull toward the decimated positions (so that directions
+ *  pose, one search hierarchy per thread), plus a small pull toward the decimated positions (so that directions
  *  nothing constrains stay put). A round whose positions would turn a face by more than 90
  *  degrees in some pose is halved until none does.
  */
@@ -24,8 +24,8 @@ struct RefitSettings {
   int rounds = 3;
   double regularization = 1e-3;  ///< weight of the pull toward the decimated position, relative to one residual
   size_t max_samples = 20000;    ///< original points (vertices, then centroids) per pose at most, evenly strided
-  /// Threads taking poses in turn (the answer does not depend on it; each holds one search tree of the posed
-  /// original at a time).
+  /// Threads taking poses in turn (the answer does not depend on it; each holds one search hierarchy of the
+  /// posed original, posed again for its next pose).
   int threads = 1;
 };
 
