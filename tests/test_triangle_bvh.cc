@@ -62,6 +62,16 @@ std::vector<Eigen::Vector3d> on_surface(const TriangleSoup& s, int n, unsigned s
   return q;
 }
 
+// Every query answered as trying every triangle answers it: the same distance and triangle, bit for bit.
+void expect_brute_force_answers(const TriangleBvh& bvh, const TriangleSoup& s, const std::vector<Eigen::Vector3d>& qs) {
+  for (const Eigen::Vector3d& q : qs) {
+    int expected = -1, found = -1;
+    const double d = brute_force(s, q, expected);
+    EXPECT_EQ(bvh.nearest(q, found), d);
+    EXPECT_EQ(found, expected);
+  }
+}
+
 std::vector<Eigen::Vector3d> queries(const TriangleSoup& s, int n, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -81,12 +91,7 @@ TEST(TriangleBvh, FindsWhatTryingEveryTriangleFindsBitForBit) {
   const TriangleSoup s = cylinder(0.4);
   const TriangleBvh bvh(s);
   EXPECT_EQ(bvh.size(), s.triangles.size());
-  for (const Eigen::Vector3d& q : queries(s, 600, 1)) {
-    int expected = -1, found = -1;
-    const double d = brute_force(s, q, expected);
-    EXPECT_EQ(bvh.nearest(q, found), d);
-    EXPECT_EQ(found, expected);
-  }
+  expect_brute_force_answers(bvh, s, queries(s, 600, 1));
 }
 
 TEST(TriangleBvh, OnTheSurfaceAndFarFromTheOriginItStillFindsWhatTryingEveryTriangleFinds) {
@@ -138,21 +143,12 @@ TEST(TriangleBvh, ARefittedHierarchyAnswersAsAFreshOne) {
   TriangleBvh moved(rest);
   moved.refit(bent.points);
   const TriangleBvh fresh(bent);
-  for (const Eigen::Vector3d& q : queries(bent, 400, 3)) {
-    int a = -1, b = -1, expected = -1;
-    const double d = brute_force(bent, q, expected);
-    EXPECT_EQ(moved.nearest(q, a), d);
-    EXPECT_EQ(fresh.nearest(q, b), d);
-    EXPECT_EQ(a, expected);
-    EXPECT_EQ(b, expected);
-  }
+  const std::vector<Eigen::Vector3d> qs = queries(bent, 400, 3);
+  expect_brute_force_answers(moved, bent, qs);
+  expect_brute_force_answers(fresh, bent, qs);
   // Too few points: refused before anything moves.
   EXPECT_THROW(moved.refit(std::vector<Eigen::Vector3d>(3)), std::out_of_range);
-  for (const Eigen::Vector3d& q : queries(bent, 50, 4)) {
-    int a = -1, expected = -1;
-    EXPECT_EQ(moved.nearest(q, a), brute_force(bent, q, expected));
-    EXPECT_EQ(a, expected);
-  }
+  expect_brute_force_answers(moved, bent, queries(bent, 50, 4));
 }
 
 TEST(TriangleBvh, BadCornersAreRefusedOrSkipped) {
@@ -163,12 +159,7 @@ TEST(TriangleBvh, BadCornersAreRefusedOrSkipped) {
   // A corner that is not a number: its triangles are never the nearest; the others are found as before.
   s.points[3] = Eigen::Vector3d(NAN, 0.0, 0.0);
   const TriangleBvh bvh(s);
-  for (const Eigen::Vector3d& q : queries(s, 200, 6)) {
-    int expected = -1, found = -1;
-    const double d = brute_force(s, q, expected);
-    EXPECT_EQ(bvh.nearest(q, found), d);
-    EXPECT_EQ(found, expected);
-  }
+  expect_brute_force_answers(bvh, s, queries(s, 200, 6));
 }
 
 TEST(TriangleBvh, NothingToFind) {

@@ -51,20 +51,18 @@ struct MeasuredSurface::Impl {
   size_t vertex_samples = 0;
   size_t area_samples = 0;
   uint64_t seed = 0;
-  size_t triangles = 0;
 };
 
 MeasuredSurface::MeasuredSurface(const TriangleSoup& soup, size_t n, uint64_t seed) : impl_(std::make_unique<Impl>()) {
   impl_->area_samples = n;
   impl_->seed = seed;
-  impl_->triangles = soup.triangles.size();
   std::mt19937_64 rng(seed);
   impl_->samples = samples(soup, n, rng, impl_->vertex_samples);
   impl_->bvh = TriangleBvh(soup);
 }
 
 void MeasuredSurface::repose(const TriangleSoup& soup) {
-  if (soup.triangles.size() != impl_->triangles || (impl_->triangles && soup.triangles != impl_->bvh.triangles()))
+  if (soup.triangles != impl_->bvh.triangles())
     throw std::invalid_argument("MeasuredSurface::repose: not the triangles it was built with");
   std::mt19937_64 rng(impl_->seed);
   impl_->samples = samples(soup, impl_->area_samples, rng, impl_->vertex_samples);
@@ -116,6 +114,15 @@ SurfaceDistance pooled(const MeasuredSurface& a, const MeasuredSurface& b, std::
 }
 
 }  // namespace
+
+const MeasuredSurface& posed_surface(std::unique_ptr<MeasuredSurface>& slot, const TriangleSoup& soup, size_t samples,
+                                     uint64_t seed) {
+  if (slot)
+    slot->repose(soup);
+  else
+    slot = std::make_unique<MeasuredSurface>(soup, samples, seed);
+  return *slot;
+}
 
 MeasuredSurface::MeasuredSurface(MeasuredSurface&&) noexcept = default;
 MeasuredSurface& MeasuredSurface::operator=(MeasuredSurface&&) noexcept = default;

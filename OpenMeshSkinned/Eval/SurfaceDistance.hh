@@ -55,6 +55,11 @@ private:
   std::unique_ptr<Impl> impl_;
 };
 
+/** \p slot's surface in the pose \p soup: built there (with \p samples and \p seed) when \p slot is empty,
+ *  else posed again (MeasuredSurface::repose). For a thread measuring the same surface pose after pose. */
+const MeasuredSurface& posed_surface(std::unique_ptr<MeasuredSurface>& slot, const TriangleSoup& soup, size_t samples,
+                                     uint64_t seed);
+
 /// Distance between two prepared surfaces: each one's samples to the other's triangles, pooled.
 SurfaceDistance surface_distance(const MeasuredSurface& a, const MeasuredSurface& b);
 

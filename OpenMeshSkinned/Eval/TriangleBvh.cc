@@ -29,15 +29,12 @@ struct Item {
 TriangleBvh::TriangleBvh(const TriangleSoup& soup) {
   const int n = static_cast<int>(soup.triangles.size());
   if (n == 0) return;
-  for (const auto& t : soup.triangles)
-    for (int v : t) {
-      if (v < 0 || size_t(v) >= soup.points.size()) throw std::out_of_range("TriangleBvh: a corner index out of range");
-      max_index_ = std::max(max_index_, v);
-    }
   // Centres relative to the soup's middle, so that floats still order them far from the origin.
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
   for (const auto& t : soup.triangles)
     for (int v : t) {
+      if (v < 0 || size_t(v) >= soup.points.size()) throw std::out_of_range("TriangleBvh: a corner index out of range");
+      max_index_ = std::max(max_index_, v);
       lo = lo.cwiseMin(soup.points[v]);
       hi = hi.cwiseMax(soup.points[v]);
     }

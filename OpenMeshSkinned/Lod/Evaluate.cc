@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <atomic>
 #include <exception>
-#include <functional>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
@@ -64,22 +63,14 @@ std::vector<HeldOutError> evaluate_lods(const SkinnedMesh& original, const std::
       // built afresh, without building the original's hierarchy again every frame).
       std::unique_ptr<MeasuredSurface> posed;
       std::vector<std::unique_ptr<MeasuredSurface>> lod_surfaces(n_lods);
-      auto pose_surface = [](std::unique_ptr<MeasuredSurface>& surface, const TriangleSoup& soup, size_t n,
-                             uint64_t seed) {
-        if (surface)
-          surface->repose(soup);
-        else
-          surface = std::make_unique<MeasuredSurface>(soup, n, seed);
-        return std::cref(*surface);
-      };
       for (size_t f = next++; f < frames.size(); f = next++) {
         const TriangleSoup original_soup = posed_soup(original, frames[f]);
-        const MeasuredSurface& original_surface = pose_surface(posed, original_soup, options.samples, 1);
+        const MeasuredSurface& original_surface = posed_surface(posed, original_soup, options.samples, 1);
         for (size_t i = 0; i < n_lods; ++i) {
           const TriangleSoup lod =
               posed_soup(*lods[i], lod_frames.empty() || lod_frames[i].empty() ? frames[f] : lod_frames[i][f]);
           const MeasuredSurface& lod_surface =
-              pose_surface(lod_surfaces[i], lod, options.samples, 0x9E3779B97F4A7C16ull);
+              posed_surface(lod_surfaces[i], lod, options.samples, 0x9E3779B97F4A7C16ull);
           d[f * n_lods + i] = surface_distance(original_surface, lod_surface, original_hints[i], lod_hints[i]);
           if (per_vertex) vd[f * n_lods + i] = vertex_errors(original_soup, original_surface, lod, lod_surface, diag);
         }

@@ -120,15 +120,6 @@ void for_each_pose(size_t n, int threads, Work work) {
   });
 }
 
-// A surface per thread, built at the thread's first pose and posed again at the next.
-const MeasuredSurface& posed_surface(std::unique_ptr<MeasuredSurface>& surface, const TriangleSoup& soup) {
-  if (surface)
-    surface->repose(soup);
-  else
-    surface = std::make_unique<MeasuredSurface>(soup, 0, 1);
-  return *surface;
-}
-
 // The faces that turn by more than 90 degrees, in some pose, between \p a and \p b (posed positions).
 std::vector<SkinnedMesh::FaceHandle> folding_faces(const SkinnedMesh& mesh,
                                                    const std::vector<std::vector<Eigen::Vector3d>>& a,
@@ -202,7 +193,7 @@ void find_pose_targets(const SkinnedMesh& lod, const SkinnedMesh& original, cons
         sp.push_back((posed.points[T[0]] + posed.points[T[1]] + posed.points[T[2]]) / 3.0);
       }
     }
-    const MeasuredSurface& surface = posed_surface(surfaces[t], posed);
+    const MeasuredSurface& surface = posed_surface(surfaces[t], posed, 0, 1);
     const std::vector<Eigen::Vector3d> y = skin_positions(lod, poses[j]);
     for (auto vh : lod.vertices()) {
       int tri = -1;
@@ -225,7 +216,7 @@ void project_samples(const SkinnedMesh& lod, const std::vector<Pose>& poses, con
   for_each_pose(poses.size(), threads, [&](int t, size_t j) {
     const TriangleSoup lsoup = posed_soup(lod, poses[j]);
     // After the first round, last round's triangle starts each search (the LOD moved little since).
-    const MeasuredSurface& lsurf = posed_surface(surfaces[t], lsoup);
+    const MeasuredSurface& lsurf = posed_surface(surfaces[t], lsoup, 0, 1);
     hits[j].resize(pt.samples.size(), Hit{-1, {-1, -1, -1}, Eigen::Vector3d::Zero()});
     for (size_t s = 0; s < pt.samples.size(); ++s) {
       Hit& h = hits[j][s];
