@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <climits>
 #include <cmath>
 #include <random>
@@ -175,6 +176,44 @@ TEST(TriangleBvh, NothingToFind) {
   one.triangles = {{0, 1, 2}};
   EXPECT_DOUBLE_EQ(TriangleBvh(one).nearest(Eigen::Vector3d(0.25, 0.25, 2.0), t), 4.0);
   EXPECT_EQ(t, 0);
+}
+
+TEST(TriangleBvh, RankKeepsNeighboursTogether) {
+  // A 40 x 40 grid whose triangles come in a shuffled order: the order the measures draw samples in.
+  TriangleSoup s;
+  const int n = 40;
+  for (int y = 0; y <= n; ++y)
+    for (int x = 0; x <= n; ++x) s.points.emplace_back(x, y, 0.0);
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const int a = y * (n + 1) + x;
+      s.triangles.push_back({a, a + 1, a + n + 2});
+      s.triangles.push_back({a, a + n + 2, a + n + 1});
+    }
+  std::shuffle(s.triangles.begin(), s.triangles.end(), std::mt19937(3));
+  const TriangleBvh bvh(s);
+  const int m = int(s.triangles.size());
+  std::vector<int> by_rank(m, -1);
+  for (int t = 0; t < m; ++t) {
+    const int r = bvh.rank(t);
+    ASSERT_GE(r, 0);
+    ASSERT_LT(r, m);
+    EXPECT_EQ(by_rank[r], -1) << "rank " << r << " given twice";
+    by_rank[r] = t;
+  }
+  EXPECT_EQ(bvh.rank(-1), -1);
+  EXPECT_EQ(bvh.rank(m), -1);
+  auto centre = [&](int t) {
+    return (s.points[s.triangles[t][0]] + s.points[s.triangles[t][1]] + s.points[s.triangles[t][2]]) / 3.0;
+  };
+  double by_index = 0.0, in_rank_order = 0.0;
+  for (int k = 1; k < m; ++k) {
+    by_index += (centre(k) - centre(k - 1)).norm();
+    in_rank_order += (centre(by_rank[k]) - centre(by_rank[k - 1])).norm();
+  }
+  // Shuffled, consecutive triangles are about a third of the grid apart; in rank order, about one cell.
+  EXPECT_LT(in_rank_order / (m - 1), 2.0);
+  EXPECT_GT(by_index / (m - 1), 10.0);
 }
 
 TEST(MeasuredSurface, PosedAgainItMeasuresAsOneBuiltInThatPose) {

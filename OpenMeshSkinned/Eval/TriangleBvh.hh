@@ -35,6 +35,10 @@ public:
   /// The soup's triangles it was built from (what refit() poses again).
   const std::vector<std::array<int, 3>>& triangles() const { return triangles_; }
   size_t size() const { return slots_.size(); }
+  /** Where soup triangle \p triangle comes in the hierarchy's leaf order: triangles close in rank are close
+   *  in space, so queries taken in the rank order of where they lie touch the same boxes one after another.
+   *  -1 for an index outside the soup. */
+  int rank(int triangle) const { return triangle >= 0 && size_t(triangle) < slot_of_.size() ? slot_of_[triangle] : -1; }
 
   /** The squared distance from \p q to the soup, with \p triangle set to the nearest triangle's index in
    *  the soup (-1 and infinity when there is none). \p hint: a triangle to start from (any value outside
