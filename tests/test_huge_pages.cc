@@ -11,10 +11,15 @@
 
 using OpenMeshSkinned::tunables_with_huge_pages;
 
-TEST(HugePages, TheTunableIsAddedToWhatTheUserSet) {
-  EXPECT_EQ(tunables_with_huge_pages(nullptr), "glibc.malloc.hugetlb=1");
-  EXPECT_EQ(tunables_with_huge_pages(""), "glibc.malloc.hugetlb=1");
-  EXPECT_EQ(tunables_with_huge_pages("glibc.malloc.check=3"), "glibc.malloc.check=3:glibc.malloc.hugetlb=1");
+TEST(HugePages, TheTunablesAreAddedToWhatTheUserSet) {
+  EXPECT_EQ(tunables_with_huge_pages(nullptr), "glibc.malloc.hugetlb=1:glibc.malloc.arena_max=1");
+  EXPECT_EQ(tunables_with_huge_pages(""), "glibc.malloc.hugetlb=1:glibc.malloc.arena_max=1");
+  EXPECT_EQ(tunables_with_huge_pages("glibc.malloc.check=3"),
+            "glibc.malloc.check=3:glibc.malloc.hugetlb=1:glibc.malloc.arena_max=1");
+}
+
+TEST(HugePages, TheUsersOwnArenaCountStands) {
+  EXPECT_EQ(tunables_with_huge_pages("glibc.malloc.arena_max=4"), "glibc.malloc.arena_max=4:glibc.malloc.hugetlb=1");
 }
 
 TEST(HugePages, TheUsersOwnHugePageSettingStands) {
@@ -56,7 +61,9 @@ TEST(HugePages, TheProgramRunsAgainOnceWithTheTunableAndItsArguments) {
   EXPECT_EQ(p.out.substr(first, p.out.find('\n', first) - first),
             p.out.substr(second, p.out.find('\n', second) - second))
       << p.out;
-  EXPECT_NE(p.out.find("tunables glibc.malloc.hugetlb=1\narg first\narg second arg\n"), std::string::npos) << p.out;
+  EXPECT_NE(p.out.find("tunables glibc.malloc.hugetlb=1:glibc.malloc.arena_max=1\narg first\narg second arg\n"),
+            std::string::npos)
+      << p.out;
 }
 
 TEST(HugePages, NoRelaunchWhenTheUserChose) {

@@ -3,15 +3,17 @@
 #include <unistd.h>
 
 #include <cstdlib>
-#include <cstring>
 
 namespace OpenMeshSkinned {
 
 std::string tunables_with_huge_pages(const char* current) {
-  const std::string add = "glibc.malloc.hugetlb=1";
-  if (!current || !*current) return add;
-  if (std::strstr(current, "glibc.malloc.hugetlb")) return {};
-  return std::string(current) + ":" + add;
+  const std::string given = current ? current : "";
+  if (given.find("glibc.malloc.hugetlb") != std::string::npos) return {};
+  std::string out = given;
+  auto add = [&](const char* tunable) { out += (out.empty() ? "" : ":") + std::string(tunable); };
+  add("glibc.malloc.hugetlb=1");
+  if (given.find("glibc.malloc.arena_max") == std::string::npos) add("glibc.malloc.arena_max=1");
+  return out;
 }
 
 void relaunch_with_huge_pages(char** argv) {

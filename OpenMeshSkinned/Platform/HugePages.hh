@@ -9,14 +9,19 @@
  *  request; but glibc reads its tunables only when a process starts. relaunch_with_huge_pages() therefore
  *  starts the program again, once, with the tunable added (bench/README.md, "Huge pages": faster in a
  *  virtual machine, the same output).
+ *
+ *  It also asks for one malloc arena for all threads (glibc.malloc.arena_max=1): with each thread's own
+ *  arena, runs on two threads spent markedly more system time and were slower (bench/README.md, "Huge
+ *  pages"); with huge pages off, one arena made no difference.
  */
 
 #include <string>
 
 namespace OpenMeshSkinned {
 
-/// The GLIBC_TUNABLES value that adds glibc.malloc.hugetlb=1 to \p current (null when unset); empty when
-/// \p current already names glibc.malloc.hugetlb, whatever its value: the user's choice stands.
+/// The GLIBC_TUNABLES value that adds glibc.malloc.hugetlb=1 and glibc.malloc.arena_max=1 to \p current
+/// (null when unset), the second unless \p current names an arena_max of its own; empty when \p current
+/// already names glibc.malloc.hugetlb, whatever its value: the user's choice stands.
 std::string tunables_with_huge_pages(const char* current);
 
 /** Call first thing in main(), before any thread starts or anything is written: on Linux with glibc,
