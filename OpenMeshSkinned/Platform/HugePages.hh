@@ -11,8 +11,9 @@
  *  virtual machine, the same output).
  *
  *  It also asks for one malloc arena for all threads (glibc.malloc.arena_max=1): with each thread's own
- *  arena, runs on two threads spent markedly more system time and were slower (bench/README.md, "Huge
- *  pages"); with huge pages off, one arena made no difference.
+ *  arena, the threads that start late (the final fit's, the evaluation's) took fresh pages of their own
+ *  and runs on two threads spent more time in the kernel (bench/README.md, "Huge pages"); with huge
+ *  pages off, one arena made no difference.
  */
 
 #include <string>
