@@ -69,6 +69,16 @@ public:
     this->settings_changed();
   }
   bool error_per_area() const { return per_area_; }
+
+  /** Also prices how far each collapse moves vertices from where the input's shading normals agree
+   *  (rest-pose normal quadrics, NormalQuadric.hh), at \p w times the geometric error (one radian of normal
+   *  over a face weighs as a mean edge length of distance in each pose). Default 0: geometry only. Set
+   *  before the decimater's initialize(): the quadrics are built then. */
+  void set_normal_weight(double w) {
+    normal_weight_ = std::max(0.0, w);
+    this->settings_changed();
+  }
+  double normal_weight() const { return normal_weight_; }
   /// The merged vertex is placed by the solve, whichever endpoint survives (EdgePriority).
   bool prices_edges() const override { return true; }
 
@@ -87,6 +97,7 @@ protected:
     s.max_iterations = max_iterations_;
     s.tolerance = tolerance_;
     s.error_per_area = per_area_;
+    s.normal_weight = normal_weight_;
   }
 
 private:
@@ -94,6 +105,7 @@ private:
   int max_iterations_ = SolveSettings{}.max_iterations;
   double tolerance_ = SolveSettings{}.tolerance;
   bool per_area_ = false;
+  double normal_weight_ = 0.0;
 };
 
 }  // namespace OpenMeshSkinned

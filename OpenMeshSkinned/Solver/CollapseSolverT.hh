@@ -94,6 +94,7 @@ public:
       throw std::length_error("the skinned solver handles skeletons of at most " +
                               std::to_string(EdgeCache::kMaxJoints) + " joints; this one has " +
                               std::to_string(skeleton(mesh_).size()));
+    poses_.set_normal_quadrics(answers_.settings().normal_weight > 0.0);
     poses_.build(threads_);
     answers_.prepare();
     applier_.prepare();

@@ -216,6 +216,12 @@ private:
     }
     problem.pa = to_eigen(mesh_.point(va));
     problem.pb = to_eigen(mesh_.point(vb));
+    problem.attribute = PoseQuadric{};
+    if (const PoseQuadric* na = poses_.normal_quadric(va); na && settings_.normal_weight > 0.0) {
+      problem.attribute = *na;
+      if (vb != va) problem.attribute += *poses_.normal_quadric(vb);
+      for (double& x : problem.attribute.q) x *= settings_.normal_weight;
+    }
   }
 
   Mesh& mesh_;

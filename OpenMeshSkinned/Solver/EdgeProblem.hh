@@ -29,6 +29,8 @@ struct EdgeProblem {
   std::vector<Affine3> transform;        ///< pose j, support joint k at [j * kMaxSupport + k] (set_pose's copies)
   Eigen::Vector3d pa = Eigen::Vector3d::Zero(), pb = Eigen::Vector3d::Zero();  ///< endpoints' rest positions
   WeightSolver::Vector start;  ///< start weights on the support (the endpoints' average)
+  /// The endpoints' rest-pose normal quadrics (NormalQuadric.hh), weighted, summed; zero when not priced.
+  PoseQuadric attribute;
 
   /// Sets the support to the union of \p wa's and \p wb's joints, and the start to their average weights.
   void set_skins(const Influences& wa, const Influences& wb);

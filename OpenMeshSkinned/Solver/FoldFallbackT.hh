@@ -98,7 +98,7 @@ public:
   void forget() { chosen_valid_ = false; }
 
   /// The skinned quadric's error of collapsing \p ci with the merged vertex at \p rest with skin \p w: the
-  /// endpoints' summed quadric of each pose at the vertex posed there.
+  /// endpoints' summed quadric of each pose at the vertex posed there, and their normal quadrics at \p rest.
   double error_at(const CollapseInfo& ci, const Eigen::Vector3d& rest, const Influences& w) const {
     double e = 0.0;
     for (int j = 0; j < poses_.n_poses(); ++j) {
@@ -106,6 +106,9 @@ public:
       q += poses_.quadric(ci.v1, j);
       e += q(poses_.posed_point(rest, w, j));
     }
+    const double nw = answers_.settings().normal_weight;
+    if (const PoseQuadric* n0 = poses_.normal_quadric(ci.v0); n0 && nw > 0.0)
+      e += nw * ((*n0)(rest) + (*poses_.normal_quadric(ci.v1))(rest));
     return std::max(e, 0.0);
   }
 

@@ -11,6 +11,7 @@
 
 #include "OpenMeshSkinned/Skin/LinearBlendSkinning.hh"
 #include "OpenMeshSkinned/Skin/SkinProperties.hh"
+#include "OpenMeshSkinned/Solver/NormalQuadric.hh"
 #include "OpenMeshSkinned/Solver/PoseQuadric.hh"
 #include "OpenMeshSkinned/Solver/Threads.hh"
 #include "OpenMeshSkinned/Solver/VertexQuadrics.hh"
@@ -54,7 +55,26 @@ public:
         mesh_, P_, [this](VertexHandle v, int j) -> const Eigen::Vector3d& { return exact_[v.idx() * P_ + j]; },
         [this](VertexHandle v, int j) -> PoseQuadric& { return quadric(v, j); }, [](auto) { return 1.0; }, threads);
     if (!keep_exact_) std::vector<Eigen::Vector3d>().swap(exact_);
+    normal_.clear();
+    if (with_normals_) {
+      // Scaled so that a normal off by one radian over a face weighs as much, per pose, as the face moved by
+      // one mean edge length: the units of the geometric quadrics summed over the poses.
+      // Summed face by face (the halfedges of each): the same to the last bit however the edges are numbered.
+      double sum = 0.0;
+      size_t n = 0;
+      for (auto fh : mesh_.faces())
+        for (auto h : mesh_.fh_range(fh)) {
+          sum += mesh_.calc_edge_length(h);
+          ++n;
+        }
+      const double s = n ? sum / n : 0.0;
+      normal_quadrics(mesh_, s * s * P_, normal_, threads);
+    }
   }
+  /// Build the rest-pose normal quadrics too (NormalQuadric.hh), from the next build().
+  void set_normal_quadrics(bool on) { with_normals_ = on; }
+  /// Vertex \p v's normal quadric, or null when build() made none.
+  const PoseQuadric* normal_quadric(VertexHandle v) const { return normal_.empty() ? nullptr : &normal_[v.idx()]; }
   /// Keep the posed positions in doubles too (from the next build()).
   void set_keep_exact(bool on) { keep_exact_ = on; }
 
@@ -98,6 +118,7 @@ public:
   /// \p into now stands for \p from's faces too.
   void merge_quadrics(VertexHandle from, VertexHandle into) {
     for (int j = 0; j < P_; ++j) quadric(into, j) += quadric(from, j);
+    if (!normal_.empty()) normal_[into.idx()] += normal_[from.idx()];
   }
 
 private:
@@ -109,6 +130,8 @@ private:
   bool keep_exact_ = false;
   std::vector<Eigen::Vector3d> exact_;  // empty unless keep_exact_
   std::vector<PoseQuadric> quadric_;
+  bool with_normals_ = false;
+  std::vector<PoseQuadric> normal_;  // per vertex; empty unless with_normals_
 };
 
 }  // namespace OpenMeshSkinned

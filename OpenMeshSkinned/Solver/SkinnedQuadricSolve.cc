@@ -15,6 +15,13 @@ namespace {
 // How far (in edge lengths) from the edge's midpoint a solved position may lie.
 constexpr double kMaxReach = 1.0;
 
+// C(a) with the rest-pose attribute quadric added: what a position costs at weights a.
+Eigen::Matrix4d blended(const EdgeProblem& p, const JointQuadrics& g, const WeightSolver::Vector& a) {
+  Eigen::Matrix4d c = g.blend(a);
+  c += p.attribute.matrix();
+  return c;
+}
+
 int count_nonzero(const WeightSolver::Vector& a) { return static_cast<int>((a.array() > 0.0).count()); }
 
 // The vertex step, then the best of it, the endpoints and the midpoint: the truncated solve is the
@@ -23,7 +30,7 @@ Eigen::Vector3d place(const EdgeProblem& p, const JointQuadrics& g, const Weight
   const Eigen::Vector3d mid = 0.5 * (p.pa + p.pb);
   Eigen::Vector3d cand[4] = {mid, p.pa, p.pb, mid};
   bool full_rank = false;
-  const Eigen::Matrix4d c = g.blend(a);
+  const Eigen::Matrix4d c = blended(p, g, a);
   int n = skinned_vertex_step(c, mid, cand[3], full_rank) ? 4 : 3;
   // A thin part (a tail, a finger) has quadrics whose minimum lies far along its axis: the error keeps
   // falling a little as the vertex slides out of the mesh. Optima more than an edge length beyond the
@@ -50,13 +57,13 @@ double alternate(const EdgeProblem& p, const JointQuadrics& g, const SolveSettin
   double e = e_prev;
   for (int it = 0; it < std::max(1, s.max_iterations); ++it) {
     v = place(p, g, a);
-    if (p.support == 1) return JointQuadrics::energy(g.blend(a), v);
+    if (p.support == 1) return JointQuadrics::energy(blended(p, g, a), v);
     g.weight_matrix(v, H);
     e = cap < p.support ? weights.solve_capped(H, p.start, cap, s.strategy, a) : weights.solve(H, p.start, a);
     if (!(e < e_prev * (1.0 - s.tolerance))) break;
     e_prev = e;
   }
-  return JointQuadrics::energy(g.blend(a), v);
+  return JointQuadrics::energy(blended(p, g, a), v);
 }
 
 // As alternate(), with the weights restricted to their current support.
@@ -73,7 +80,7 @@ double alternate_fixed_support(const EdgeProblem& p, const JointQuadrics& g, con
     if (!(e < e_prev * (1.0 - s.tolerance))) break;
     e_prev = e;
   }
-  return JointQuadrics::energy(g.blend(a), v);
+  return JointQuadrics::energy(blended(p, g, a), v);
 }
 
 [[maybe_unused]] bool transforms_finite(const EdgeProblem& p) {
@@ -101,7 +108,7 @@ double skinned_energy(const EdgeProblem& p, const Eigen::Vector3d& v, const Weig
     for (int k = 0; k < p.support; ++k) x += a[k] * (p.M(j, k) * v.homogeneous());
     e += p.quadric[j](x);
   }
-  return std::max(e, 0.0);
+  return std::max(e + p.attribute(v), 0.0);
 }
 
 bool skinned_vertex_step(const Eigen::Matrix4d& c, const Eigen::Vector3d& ref, Eigen::Vector3d& v, bool& full_rank) {

@@ -47,6 +47,8 @@ struct SolveSettings {
   // weight solves than 1e-4, with the peer benchmark's held-out errors unchanged to within its noise
   // (bench/README.md, "Defaults chosen by measurement").
   double tolerance = 1e-2;
+  /// Weight of the rest-pose normal quadrics (NormalQuadric.hh) against the posed geometry; 0: geometry only.
+  double normal_weight = 0.0;
 };
 
 /// E(v, a) of \p p by its definition, pose by pose (the solve itself sums the poses out: JointQuadrics.hh).

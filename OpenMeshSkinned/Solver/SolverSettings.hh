@@ -34,7 +34,7 @@ struct SolverSettings : SolveSettings {
   /// Whether two settings give the same edge answers (the edge cache survives a change of the others).
   bool same_answers(const SolverSettings& o) const {
     return max_influences == o.max_influences && strategy == o.strategy && max_iterations == o.max_iterations &&
-           tolerance == o.tolerance;
+           tolerance == o.tolerance && normal_weight == o.normal_weight;
   }
 };
 
