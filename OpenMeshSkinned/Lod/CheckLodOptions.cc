@@ -27,9 +27,10 @@ void check_lod_options(const LodOptions& o) {
     throw LodOptionsError("--poses must be 1 to " + std::to_string(kMaxLodPoses));
   if (!o.method.empty() && !is_lod_method(o.method)) throw LodOptionsError("--method must be " + lod_method_names());
   if (o.threads < 0) throw LodOptionsError("--threads must be 0 (the hardware's) or more");
-  for (double v : {o.joint_guard, o.max_error, o.joint_energy, o.anim_error})
+  for (double v : {o.joint_guard, o.max_error, o.joint_energy, o.anim_error, o.normal_weight})
     if (!(v >= 0.0) || !std::isfinite(v))
-      throw LodOptionsError("--joint-guard, --max-error, --joint-energy and --anim-error must be finite and >= 0");
+      throw LodOptionsError(
+          "--joint-guard, --max-error, --joint-energy, --anim-error and --normal-weight must be finite and >= 0");
   for (int j : o.max_joints)
     if (j < 1) throw LodOptionsError("--max-joints: every value must be at least 1");
   if (o.max_error > 0.0 && (!o.max_joints.empty() || o.joint_energy > 0.0))

@@ -142,7 +142,10 @@ void add_modules(Decimater& dec, Handles& h, const MethodModules& m, const LodOp
     dec.add(h.guard);
     dec.module(h.guard).set_tau(opt.joint_guard);
   }
-  if (h.skinned.is_valid()) dec.module(h.skinned).set_error_per_area(!opt.energy_error);
+  if (h.skinned.is_valid()) {
+    dec.module(h.skinned).set_error_per_area(!opt.energy_error);
+    dec.module(h.skinned).set_normal_weight(opt.normal_weight);
+  }
   // The bound needs the shared solver's placement and poses: the frame methods place vertices themselves.
   if (opt.max_error > 0.0) {
     if (!h.frame_fold.is_valid() && !h.frames.is_valid()) {

@@ -36,13 +36,15 @@ struct LodOptions {
   bool strict_fold = false;       ///< never relax the 90-degree fold-over limit to reach a target
   bool energy_error = false;      ///< the skinned priority as the paper's quartic energy, not per area
   double joint_guard = 0.0;       ///< Savoye-Meyer joint-region guard TAU (0: off)
-  double max_error = 0.0;         ///< bound on the input's vertices' distance to the LOD, % of the diagonal (0: none)
-  std::vector<int> max_joints;    ///< skeleton LoD: joints kept, one per LOD, the last repeating (empty: all)
-  double joint_energy = 0.0;      ///< skeleton LoD: minor joints under this joint energy go (0: none by energy)
-  double anim_error = 0.0;        ///< motion LoD: keys dropped while no vertex moves further, % of the diagonal
-  bool anim_frames = false;       ///< motion LoD by merging whole key frames (the paper's) instead of channels
-  size_t keyframes = 0;           ///< frame animations: keep this many stored frames, chosen by the GA (0: all)
-  size_t max_memory_mb = 8192;    ///< refuse a number of poses whose poses would need more (0: no limit)
+  /// weight of the rest-pose normal quadrics against the geometry (ModSkinnedQuadricT::set_normal_weight; 0: off)
+  double normal_weight = 0.03;
+  double max_error = 0.0;       ///< bound on the input's vertices' distance to the LOD, % of the diagonal (0: none)
+  std::vector<int> max_joints;  ///< skeleton LoD: joints kept, one per LOD, the last repeating (empty: all)
+  double joint_energy = 0.0;    ///< skeleton LoD: minor joints under this joint energy go (0: none by energy)
+  double anim_error = 0.0;      ///< motion LoD: keys dropped while no vertex moves further, % of the diagonal
+  bool anim_frames = false;     ///< motion LoD by merging whole key frames (the paper's) instead of channels
+  size_t keyframes = 0;         ///< frame animations: keep this many stored frames, chosen by the GA (0: all)
+  size_t max_memory_mb = 8192;  ///< refuse a number of poses whose poses would need more (0: no limit)
 };
 
 /// Past this many example poses the schedule stops being a sample of the clips and becomes the clips.

@@ -71,6 +71,10 @@ void declare_layer_options(CLI::App& app, Options& opt, OptionWords& c) {
                  "Savoye & Meyer's joint-region guard: vertices with a weight of at least TAU times their joint's "
                  "average weight may not disappear (the paper's TAU is 1; default off)")
       ->check(CLI::PositiveNumber);
+  app.add_option("--normal-weight", opt.normal_weight,
+                 "Weight of the shading-normal term in the collapse cost: how far a collapse spreads a bent normal "
+                 "over faces that showed another (0: geometry only; default 0.03)")
+      ->check(CLI::NonNegativeNumber);
   app.add_option("--max-joints", opt.max_joints,
                  "Skeleton LoD: remove minor joints (Savoye & Meyer) until N remain, baking their motion into their "
                  "children and re-solving the skins; one value, or one per LOD (N1,N2,...; the last repeats)")

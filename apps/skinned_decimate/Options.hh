@@ -1,6 +1,7 @@
 #pragma once
 // What the command line asked for, and the one error type that means "the command line is wrong" (exit 2).
 
+#include <OpenMeshSkinned/Lod/LodOptions.hh>
 #include <OpenMeshSkinned/Skin/SkinnedMesh.hh>
 
 #include <stdexcept>
@@ -30,9 +31,10 @@ struct Options {
   double time_limit = 300.0;
   int threads = 0;  // 0: the hardware's
   bool evaluate = true;
-  std::string html, preview;    // --html page, --preview PNG
-  bool html_beside = false;     // --html-assets beside: the GLBs in a script next to the page
-  double joint_guard = 0.0;     // --joint-guard TAU (0: off)
+  std::string html, preview;  // --html page, --preview PNG
+  bool html_beside = false;   // --html-assets beside: the GLBs in a script next to the page
+  double joint_guard = 0.0;   // --joint-guard TAU (0: off)
+  double normal_weight = OpenMeshSkinned::LodOptions{}.normal_weight;  // --normal-weight W (0: geometry only)
   double anim_error = 0.0;      // --anim-error E, % of the diagonal (0: clips kept whole)
   bool anim_frames = false;     // --anim-method frames: the paper's whole-frame merge instead of channels
   std::vector<int> max_joints;  // --max-joints N or N1,N2,... one per LOD (empty: skeleton kept whole)

@@ -58,6 +58,7 @@ LodOptions lod_options(const Options& opt, const std::string& method) {
   l.strict_fold = opt.strict_fold;
   l.energy_error = opt.energy_error;
   l.joint_guard = opt.joint_guard;
+  l.normal_weight = opt.normal_weight;
   l.max_error = opt.max_error;
   l.max_joints = opt.max_joints;
   l.joint_energy = opt.joint_energy;

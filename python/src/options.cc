@@ -55,6 +55,8 @@ const std::vector<Field>& fields() {
       field("energy_error", "bool", "the skinned priority as the paper's quartic energy, not per area",
             &LodOptions::energy_error),
       field("joint_guard", "float", "Savoye-Meyer joint-region guard TAU (0: off)", &LodOptions::joint_guard),
+      field("normal_weight", "float", "weight of the shading-normal term in the collapse cost (0: geometry only)",
+            &LodOptions::normal_weight),
       field("max_error", "float", "bound on the input's vertices' distance to the LOD, % of the diagonal (0: none)",
             &LodOptions::max_error),
       field("max_joints", "list of int", "skeleton LoD: joints kept, one per LOD, the last repeating ([]: all)",
@@ -147,6 +149,7 @@ std::vector<std::string> tool_arguments(const LodOptions& o) {
   flag(o.strict_fold, "--strict-fold");
   value(o.energy_error, "--error", "energy");
   value(o.joint_guard != d.joint_guard, "--joint-guard", number(o.joint_guard));
+  value(o.normal_weight != d.normal_weight, "--normal-weight", number(o.normal_weight));
   value(o.max_error != d.max_error, "--max-error", number(o.max_error));
   value(!o.max_joints.empty(), "--max-joints", joined(o.max_joints));
   value(o.joint_energy != d.joint_energy, "--joint-energy", number(o.joint_energy));
