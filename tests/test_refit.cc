@@ -137,3 +137,21 @@ TEST(Refit, ASliverThatTurnsOverAtAnyStepDoesNotHoldTheRestBack) {
   }
   EXPECT_EQ(runs, 6);
 }
+
+TEST(Refit, ConjugateGradientsTakeTheFactorizationsStep) {
+  // Large LODs take their steps from conjugate gradients: the fit must land where the factorization's does.
+  const Mesh original = omsk_test::load_character("X/Testwuson.X", 8);
+  const Mesh lod = decimated(original, original.n_faces() / 5);
+  Mesh fitted[2] = {lod, lod};
+  RefitReport r[2];
+  for (int i = 0; i < 2; ++i) {
+    RefitSettings s;
+    s.direct_max_vertices = i == 0 ? lod.n_vertices() : 0;
+    r[i] = refit_positions(fitted[i], original, example_poses(original), s);
+  }
+  EXPECT_EQ(r[0].rounds, r[1].rounds);
+  EXPECT_LT(r[0].after, r[0].before);
+  EXPECT_NEAR(r[1].after, r[0].after, 1e-6 * r[0].after);
+  const double tol = 1e-7 * bbox_diagonal(original);
+  for (auto vh : lod.vertices()) EXPECT_LT((fitted[0].point(vh) - fitted[1].point(vh)).norm(), tol) << vh.idx();
+}

@@ -281,6 +281,24 @@ bool take_step(SkinnedMesh& lod, const std::vector<Pose>& poses,
   return moved;
 }
 
+// J^T J dx = rhs. Factorizing costs time and memory that grow faster than the mesh (fill-in); the pull
+// toward the decimated positions keeps the system well conditioned, so conjugate gradients converge in a few
+// iterations where the mesh is large. The factorization remains the answer when they do not.
+bool solve_step(const Eigen::SparseMatrix<double>& JtJ, const Eigen::VectorXd& rhs, bool iterative,
+                Eigen::VectorXd& dx) {
+  if (iterative) {
+    Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> cg(JtJ);
+    cg.setTolerance(1e-10);
+    cg.setMaxIterations(200);
+    dx = cg.solve(rhs);
+    if (cg.info() == Eigen::Success && dx.allFinite()) return true;
+  }
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(JtJ);
+  if (solver.info() != Eigen::Success) return false;
+  dx = solver.solve(rhs);
+  return solver.info() == Eigen::Success && dx.allFinite();
+}
+
 }  // namespace
 
 RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const std::vector<Pose>& poses,
@@ -318,10 +336,8 @@ RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const
       ne.rhs.segment<3>(long(3 * v)) -= lambda * (x[v] - x0[v]);
     }
     const Eigen::SparseMatrix<double> JtJ = ne.matrix(nv);
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(JtJ);
-    if (solver.info() != Eigen::Success) break;
-    const Eigen::VectorXd dx = solver.solve(ne.rhs);
-    if (solver.info() != Eigen::Success || !dx.allFinite()) break;
+    Eigen::VectorXd dx;
+    if (!solve_step(JtJ, ne.rhs, nv > settings.direct_max_vertices, dx)) break;
     if (!take_step(lod, poses, posed_initial, x, dx)) break;
     ++report.rounds;
   }

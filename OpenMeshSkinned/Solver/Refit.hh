@@ -27,6 +27,9 @@ struct RefitSettings {
   /// Threads taking poses in turn (the answer does not depend on it; each holds one search hierarchy of the
   /// posed original, posed again for its next pose).
   int threads = 1;
+  /// Larger LODs take each round's step from conjugate gradients instead of a sparse factorization, whose
+  /// fill-in grows faster than the mesh (the step agrees to the solver's tolerance).
+  size_t direct_max_vertices = 20000;
 };
 
 struct RefitReport {
