@@ -179,6 +179,9 @@ void find_pose_targets(const SkinnedMesh& lod, const SkinnedMesh& original, cons
   pt.has_target.assign(np, std::vector<char>(nv, 0));
   pt.sample_at.assign(np, {});
   std::vector<std::unique_ptr<MeasuredSurface>> surfaces(std::max(1, threads));
+  // Each thread's last answer per vertex starts its next pose's search (a vertex moves little from pose to
+  // pose; the nearest point does not depend on the hint); the previous vertex's starts the first.
+  std::vector<std::vector<int>> hints(std::max(1, threads), std::vector<int>(nv, -1));
   for_each_pose(np, threads, [&](int t, size_t j) {
     TriangleSoup posed;
     posed.points = skin_positions(original, poses[j]);
@@ -195,10 +198,14 @@ void find_pose_targets(const SkinnedMesh& lod, const SkinnedMesh& original, cons
     }
     const MeasuredSurface& surface = posed_surface(surfaces[t], posed, 0, 1);
     const std::vector<Eigen::Vector3d> y = skin_positions(lod, poses[j]);
+    int previous = -1;
     for (auto vh : lod.vertices()) {
       int tri = -1;
-      surface.distance(y[vh.idx()], tri);
+      int& hint = hints[t][vh.idx()];
+      surface.distance(y[vh.idx()], tri, hint >= 0 ? hint : previous);
+      hint = tri;
       if (tri < 0) continue;
+      previous = tri;
       const auto& T = posed.triangles[tri];
       const Eigen::Vector3d corners[3] = {posed.points[T[0]], posed.points[T[1]], posed.points[T[2]]};
       Eigen::Vector3d bary;
