@@ -51,7 +51,7 @@ row() {
     'BEGIN {printf "%-44s %9.2f %9.0f %10.2f %10.2f\n", n, s, kb / 1024, s / ps, kb / pk}'
 }
 row "gltfpack 1.3 -si $ratio -sv -sp -se 1 -noq" "$pack_s" "$pack_kb"
-for variant in "" "--no-eval" "--no-eval --threads 1"; do
+for variant in "" "--no-eval" "--no-eval --normal-weight 0" "--no-eval --threads 1"; do
   # shellcheck disable=SC2086
   read -r s kb < <(measure "$cli" "$work/human.glb" -o "$work/ours.glb" --faces "$faces" --quiet $variant)
   row "skinned-decimate --faces $faces $variant" "$s" "$kb"
