@@ -1,6 +1,7 @@
 // The rest-pose normal quadrics: a face's linear normal field, what a vertex pays for moving off where its
 // faces' shading agrees, smoothing groups priced apart, and the solve that adds them to the geometry.
 #include "helpers.hh"
+#include "one_joint_edge.hh"
 
 #include <OpenMeshSkinned/Solver/NormalQuadric.hh>
 #include <OpenMeshSkinned/Solver/SkinnedQuadricSolve.hh>
@@ -108,15 +109,8 @@ TEST(NormalQuadric, SmoothingGroupsArePricedApart) {
 TEST(NormalQuadric, TheSolveAddsTheAttributeToTheGeometry) {
   // One joint, the plane z = 0 in its one pose: the geometry does not care where along the edge the vertex
   // goes, and the truncated solve keeps it at the midpoint. An attribute quadric x^2 pulls it to pa.
-  EdgeProblem p;
-  Influences w;
-  w.push(0, 1.0);
-  p.set_skins(w, w);
-  p.resize(1);
-  p.set_pose(0, Pose::identity(1));
-  p.quadric[0] = PoseQuadric::plane(Eigen::Vector3d::UnitZ(), 0.0, 1.0);
-  p.pa = Eigen::Vector3d(0, 0, 0);
-  p.pb = Eigen::Vector3d(1, 0, 0);
+  EdgeProblem p = omsk_test::one_joint_edge(PoseQuadric::plane(Eigen::Vector3d::UnitZ(), 0.0, 1.0),
+                                            Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0));
   WeightSolver weights;
   CollapseResult plain, priced;
   solve_collapse(p, SolveSettings{}, weights, plain);

@@ -37,6 +37,11 @@ Mesh decimated(const Mesh& original, size_t faces) {
   return lod;
 }
 
+// fitted[i] refitted against \p original in its example poses with settings s[i].
+void fit_both(const Mesh& original, const RefitSettings (&s)[2], Mesh (&fitted)[2], RefitReport (&r)[2]) {
+  for (int i = 0; i < 2; ++i) r[i] = refit_positions(fitted[i], original, example_poses(original), s[i]);
+}
+
 }  // namespace
 
 TEST(Refit, PutsAShakenCopyBackOnTheSurface) {
@@ -94,13 +99,11 @@ TEST(Refit, NothingToFitIsNoChange) {
 TEST(Refit, TheAnswerDoesNotDependOnTheThreadCount) {
   const Mesh original = omsk_test::load_character("X/Testwuson.X", 8);
   const Mesh lod = decimated(original, original.n_faces() / 5);
+  RefitSettings s[2];
+  s[1].threads = 3;
   Mesh fitted[2] = {lod, lod};
   RefitReport r[2];
-  for (int t = 0; t < 2; ++t) {
-    RefitSettings s;
-    s.threads = t == 0 ? 1 : 3;
-    r[t] = refit_positions(fitted[t], original, example_poses(original), s);
-  }
+  fit_both(original, s, fitted, r);
   EXPECT_GT(r[0].rounds, 0);
   EXPECT_EQ(r[0].after, r[1].after);
   omsk_test::expect_same_mesh(fitted[0], fitted[1]);
@@ -142,13 +145,12 @@ TEST(Refit, ConjugateGradientsTakeTheFactorizationsStep) {
   // Large LODs take their steps from conjugate gradients: the fit must land where the factorization's does.
   const Mesh original = omsk_test::load_character("X/Testwuson.X", 8);
   const Mesh lod = decimated(original, original.n_faces() / 5);
+  RefitSettings s[2];
+  s[0].direct_max_vertices = lod.n_vertices();
+  s[1].direct_max_vertices = 0;
   Mesh fitted[2] = {lod, lod};
   RefitReport r[2];
-  for (int i = 0; i < 2; ++i) {
-    RefitSettings s;
-    s.direct_max_vertices = i == 0 ? lod.n_vertices() : 0;
-    r[i] = refit_positions(fitted[i], original, example_poses(original), s);
-  }
+  fit_both(original, s, fitted, r);
   EXPECT_EQ(r[0].rounds, r[1].rounds);
   EXPECT_LT(r[0].after, r[0].before);
   EXPECT_NEAR(r[1].after, r[0].after, 1e-6 * r[0].after);

@@ -1,4 +1,6 @@
 // The collapse maths without a mesh: EdgeProblems built by hand from planes and joint transforms.
+#include "one_joint_edge.hh"
+
 #include <OpenMeshSkinned/Solver/SkinnedQuadricSolve.hh>
 #include <OpenMeshSkinned/Solver/TruncatedSolve.hh>
 
@@ -136,15 +138,8 @@ TEST(SkinnedQuadricSolve, CapKeepsTheSolutionWithinTheLimit) {
 
 TEST(SkinnedQuadricSolve, FlatProblemsStayNearTheEdge) {
   // One plane: every point of it is optimal. The solve must not wander along it.
-  EdgeProblem p;
-  Influences w;
-  w.push(0, 1.0);
-  p.set_skins(w, w);
-  p.resize(1);
-  p.set_pose(0, Pose::identity(1));
-  p.quadric[0] = plane(Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero());
-  p.pa = Eigen::Vector3d(0, 0, 0);
-  p.pb = Eigen::Vector3d(1, 0, 0);
+  const EdgeProblem p = omsk_test::one_joint_edge(plane(Eigen::Vector3d::UnitZ(), Eigen::Vector3d::Zero()),
+                                                  Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0));
   WeightSolver ws;
   CollapseResult r;
   solve_collapse(p, SolveSettings{}, ws, r);
