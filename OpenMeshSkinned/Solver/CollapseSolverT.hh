@@ -117,8 +117,7 @@ public:
   Eigen::Vector3d posed_point(const Eigen::Vector3d& rest, const Influences& w, int j) const {
     return poses_.posed_point(rest, w, j);
   }
-  PoseQuadric& quadric(VertexHandle v, int j) { return poses_.quadric(v, j); }
-  const PoseQuadric& quadric(VertexHandle v, int j) const { return poses_.quadric(v, j); }
+  PoseQuadric quadric(VertexHandle v, int j) const { return poses_.quadric(v, j); }
 
   // ---- solving (EdgeAnswersT) ------------------------------------------------------------------------------
 

@@ -211,8 +211,9 @@ private:
     problem.use_poses(&poses_.poses());
     problem.resize(poses_.n_poses());
     for (int j = 0; j < poses_.n_poses(); ++j) {
-      problem.quadric[j] = poses_.quadric(va, j);
-      if (vb != va) problem.quadric[j] += poses_.quadric(vb, j);
+      problem.quadric[j] = PoseQuadric{};
+      poses_.add_quadric(va, j, problem.quadric[j]);
+      if (vb != va) poses_.add_quadric(vb, j, problem.quadric[j]);
     }
     problem.pa = to_eigen(mesh_.point(va));
     problem.pb = to_eigen(mesh_.point(vb));

@@ -103,7 +103,7 @@ public:
     double e = 0.0;
     for (int j = 0; j < poses_.n_poses(); ++j) {
       PoseQuadric q = poses_.quadric(ci.v0, j);
-      q += poses_.quadric(ci.v1, j);
+      poses_.add_quadric(ci.v1, j, q);
       e += q(poses_.posed_point(rest, w, j));
     }
     const double nw = answers_.settings().normal_weight;

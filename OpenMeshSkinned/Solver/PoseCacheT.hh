@@ -7,6 +7,13 @@
  *  fold-over check reads them, where a rounding of 10^-7 of the model's size turns no face that matters;
  *  the quadrics are built from positions in doubles, and posed() computes one in doubles, or reads it
  *  when set_keep_exact() asked for them to be kept as well (the deviation bound reads them all the time).
+ *
+ *  Each quadric's b and c are floats too, about its vertex's stored posed position (64 bytes instead of 80,
+ *  in the largest table of a run). About the origin they would lose the surface to cancellation far from
+ *  it; about the vertex they are the small offsets of the vertex from its planes, each kept to 7 digits.
+ *  A stays in doubles: rounded, it would bend flat regions by 10^-7 of their area, which reorders the
+ *  collapses of flat parts (measured: the column's held-out error rose). quadric() gives a quadric back
+ *  about the origin, in doubles.
  */
 
 #include "OpenMeshSkinned/Skin/LinearBlendSkinning.hh"
@@ -41,6 +48,7 @@ public:
     P_ = static_cast<int>(poses_.size());
     const size_t nv = mesh_.n_vertices();
     // update() fills the doubles while exact_ holds any: kept only when asked for, after the quadrics.
+    std::vector<LocalQuadric>().swap(quadric_);  // update() moves stored quadrics: none yet
     posed_.assign(nv * P_, Eigen::Vector3f::Zero());
     exact_.assign(nv * P_, Eigen::Vector3d::Zero());
     threads = std::clamp(threads, 1, int(nv / 4096) + 1);
@@ -50,10 +58,22 @@ public:
         if (!mesh_.has_vertex_status() || !mesh_.status(vh).deleted()) update(vh);
       }
     });
-    quadric_.assign(nv * P_, PoseQuadric{});
-    accumulate_quadrics(
-        mesh_, P_, [this](VertexHandle v, int j) -> const Eigen::Vector3d& { return exact_[v.idx() * P_ + j]; },
-        [this](VertexHandle v, int j) -> PoseQuadric& { return quadric(v, j); }, [](auto) { return 1.0; }, threads);
+    // Summed in doubles one pose at a time per thread (the same planes in the same order as
+    // accumulate_quadrics()), then stored: a table of doubles for every pose would double the peak.
+    auto pos = [this](VertexHandle v, int j) -> const Eigen::Vector3d& { return exact_[v.idx() * P_ + j]; };
+    const std::vector<double> sheet_weight = detail::sheet_edge_weights(mesh_, P_, pos);
+    quadric_.assign(nv * P_, LocalQuadric{});
+    const int pose_threads = std::clamp(threads, 1, std::max(1, P_));
+    run_on_threads(pose_threads, [&](int t) {
+      std::vector<PoseQuadric> sum;
+      for (int j = P_ * t / pose_threads; j < P_ * (t + 1) / pose_threads; ++j) {
+        sum.assign(nv, PoseQuadric{});
+        detail::accumulate_configurations(
+            mesh_, j, j + 1, pos, [&sum](VertexHandle v, int) -> PoseQuadric& { return sum[v.idx()]; },
+            [](auto) { return 1.0; }, sheet_weight);
+        for (size_t i = 0; i < nv; ++i) set_quadric(VertexHandle(static_cast<int>(i)), j, sum[i]);
+      }
+    });
     if (!keep_exact_) std::vector<Eigen::Vector3d>().swap(exact_);
     normal_.clear();
     if (with_normals_) {
@@ -90,8 +110,40 @@ public:
   }
   /// The same position as stored, in floats (the fold-over check's).
   Eigen::Vector3d posed_stored(int v, int j) const { return posed_[v * P_ + j].template cast<double>(); }
-  PoseQuadric& quadric(VertexHandle v, int j) { return quadric_[v.idx() * P_ + j]; }
-  const PoseQuadric& quadric(VertexHandle v, int j) const { return quadric_[v.idx() * P_ + j]; }
+  /// Vertex \p v's quadric in pose \p j, about the origin.
+  PoseQuadric quadric(VertexHandle v, int j) const {
+    PoseQuadric q;
+    add_quadric(v, j, q);
+    return q;
+  }
+  /// Adds vertex \p v's quadric in pose \p j (about the origin) to \p into: the solve's summed endpoints,
+  /// without a copy between.
+  void add_quadric(VertexHandle v, int j, PoseQuadric& into) const {
+    const size_t k = size_t(v.idx()) * P_ + j;
+    const double px = posed_[k].x(), py = posed_[k].y(), pz = posed_[k].z();
+    const LocalQuadric& l = quadric_[k];
+    const double* A = l.A;
+    const double apx = A[0] * px + A[1] * py + A[2] * pz;
+    const double apy = A[1] * px + A[3] * py + A[4] * pz;
+    const double apz = A[2] * px + A[4] * py + A[5] * pz;
+    const double bx = l.b[0], by = l.b[1], bz = l.b[2];
+    double* q = into.q;
+    q[0] += A[0], q[1] += A[1], q[2] += A[2], q[4] += A[3], q[5] += A[4], q[7] += A[5];
+    // b = b' - A p, c = c' + p^T A p - 2 b'^T p, for b', c' about p.
+    q[3] += bx - apx, q[6] += by - apy, q[8] += bz - apz;
+    q[9] += l.c + (px * apx + py * apy + pz * apz) - 2.0 * (bx * px + by * py + bz * pz);
+  }
+  /// Stores \p q (about the origin) as vertex \p v's quadric in pose \p j.
+  void set_quadric(VertexHandle v, int j, const PoseQuadric& q) {
+    const size_t k = v.idx() * P_ + j;
+    const Eigen::Vector3d p = posed_[k].template cast<double>();
+    const Eigen::Vector3d bl = q.A() * p + q.b();
+    LocalQuadric& l = quadric_[k];
+    const double A[6] = {q.q[0], q.q[1], q.q[2], q.q[4], q.q[5], q.q[7]};
+    std::copy(A, A + 6, l.A);
+    for (int i = 0; i < 3; ++i) l.b[i] = static_cast<float>(bl[i]);
+    l.c = static_cast<float>(q(p));
+  }
 
   /// A rest position with a skin, posed in pose \p j.
   Eigen::Vector3d posed_point(const Eigen::Vector3d& rest, const Influences& w, int j) const {
@@ -104,7 +156,11 @@ public:
     const Influences& w = mesh_.property(h_inf_, v);
     for (int j = 0; j < P_; ++j) {
       const Eigen::Vector3d p = skin_point(rest, w, poses_[j]);
+      // The quadric is stored about the old position: moved with it to the new one.
+      const bool stored = !quadric_.empty();
+      const PoseQuadric q = stored ? quadric(v, j) : PoseQuadric{};
       posed_[v.idx() * P_ + j] = p.template cast<float>();
+      if (stored) set_quadric(v, j, q);
       if (!exact_.empty()) exact_[v.idx() * P_ + j] = p;
     }
   }
@@ -112,12 +168,16 @@ public:
   /// Starts loading \p v's quadrics into the cache (they are read soon, and are seldom there already).
   void prefetch_quadrics(VertexHandle v) const {
     const char* p = reinterpret_cast<const char*>(&quadric_[v.idx() * P_]);
-    for (size_t off = 0; off < P_ * sizeof(PoseQuadric); off += 64) __builtin_prefetch(p + off);
+    for (size_t off = 0; off < P_ * sizeof(LocalQuadric); off += 64) __builtin_prefetch(p + off);
   }
 
   /// \p into now stands for \p from's faces too.
   void merge_quadrics(VertexHandle from, VertexHandle into) {
-    for (int j = 0; j < P_; ++j) quadric(into, j) += quadric(from, j);
+    for (int j = 0; j < P_; ++j) {
+      PoseQuadric q = quadric(into, j);
+      add_quadric(from, j, q);
+      set_quadric(into, j, q);
+    }
     if (!normal_.empty()) normal_[into.idx()] += normal_[from.idx()];
   }
 
@@ -129,7 +189,11 @@ private:
   std::vector<Eigen::Vector3f> posed_;
   bool keep_exact_ = false;
   std::vector<Eigen::Vector3d> exact_;  // empty unless keep_exact_
-  std::vector<PoseQuadric> quadric_;
+  struct LocalQuadric {
+    double A[6] = {0, 0, 0, 0, 0, 0};  // the upper triangle of A
+    float b[3] = {0, 0, 0}, c = 0;     // about the stored posed position
+  };
+  std::vector<LocalQuadric> quadric_;
   bool with_normals_ = false;
   std::vector<PoseQuadric> normal_;  // per vertex; empty unless with_normals_
 };
