@@ -12,11 +12,14 @@
 
 namespace OpenMeshSkinned {
 
-/// One bone influence: a joint index into the skeleton and its blend weight.
-struct JointWeight {
+/// One bone influence: a joint index into the skeleton and its blend weight. Packed to 12 bytes (not 16):
+/// every vertex of the original and of the mesh being decimated holds eight, the memory of a large
+/// character's skins; reading the doubles at 4-byte alignment left the run times unchanged.
+struct __attribute__((packed, aligned(4))) JointWeight {
   int32_t joint = -1;
   double weight = 0.0;
 };
+static_assert(sizeof(JointWeight) == 12, "JointWeight is packed");
 
 /** Up to kCapacity influences, sorted by weight (descending), ties by joint index (ascending).
  *  Weights of a valid skin are >= 0 and sum to 1 (see validate_skin()). */
