@@ -14,7 +14,7 @@ namespace OpenMeshSkinned {
 
 /// One bone influence: a joint index into the skeleton and its blend weight. Packed to 12 bytes (not 16):
 /// every vertex of the original and of the mesh being decimated holds eight, the memory of a large
-/// character's skins; reading the doubles at 4-byte alignment left the run times unchanged.
+/// character's skins. x86-64 and ARMv8 load a double at 4-byte alignment without a fault.
 struct __attribute__((packed, aligned(4))) JointWeight {
   int32_t joint = -1;
   double weight = 0.0;

@@ -12,8 +12,8 @@
  *  in the largest table of a run). About the origin they would lose the surface to cancellation far from
  *  it; about the vertex they are the small offsets of the vertex from its planes, each kept to 7 digits.
  *  A stays in doubles: rounded, it would bend flat regions by 10^-7 of their area, which reorders the
- *  collapses of flat parts (measured: the column's held-out error rose). quadric() gives a quadric back
- *  about the origin, in doubles.
+ *  collapses of flat parts (bench/README.md, "The tool end to end against gltfpack"). quadric() gives a
+ *  quadric back about the origin, in doubles.
  */
 
 #include "OpenMeshSkinned/Skin/LinearBlendSkinning.hh"
@@ -135,7 +135,7 @@ public:
   }
   /// Stores \p q (about the origin) as vertex \p v's quadric in pose \p j.
   void set_quadric(VertexHandle v, int j, const PoseQuadric& q) {
-    const size_t k = v.idx() * P_ + j;
+    const size_t k = size_t(v.idx()) * P_ + j;
     const Eigen::Vector3d p = posed_[k].template cast<double>();
     const Eigen::Vector3d bl = q.A() * p + q.b();
     LocalQuadric& l = quadric_[k];
