@@ -4,6 +4,8 @@
 
 #include <OpenMeshSkinned/Solver/VertexQuadrics.hh>
 
+#include <mutex>
+
 using namespace OpenMeshSkinned;
 using omsk_test::Mesh;
 
@@ -70,4 +72,29 @@ TEST(VertexQuadrics, AUvSeamKeepsItsLineOnAFlatSheet) {
   const Eigen::Vector3d inward(0, 0.3, 0), along(0.3, 0, 0);
   EXPECT_NEAR(seam.q[0](inward) - flat.q[0](inward), kSeamPlaneWeight * 2 * 0.09, 1e-9);
   EXPECT_NEAR(seam.q[0](along), flat.q[0](along), 1e-12);
+}
+
+TEST(VertexQuadrics, OneConfigurationAtATimeSumsWhatAllAtOnceSum) {
+  // A hinge folded in some configurations and not others: every kind of plane, on one and on two threads.
+  Hinge all({Eigen::Vector3d(0, 1, 0.05), Eigen::Vector3d(0, 0, 1), Eigen::Vector3d(0.1, 1, -0.02)});
+  const int n = int(all.u.size());
+  auto pos = [&](Mesh::VertexHandle v, int j) -> Eigen::Vector3d {
+    const auto& p = all.mesh.point(v);
+    return v.idx() == 3 ? all.u[j] : Eigen::Vector3d(p[0], p[1], p[2]);
+  };
+  for (int threads : {1, 2}) {
+    std::vector<int> seen(n, 0);
+    std::mutex m;
+    accumulate_quadrics_by_configuration(
+        all.mesh, n, pos, [](auto) { return 1.0; },
+        [&](int j, const std::vector<PoseQuadric>& sum) {
+          std::lock_guard<std::mutex> lock(m);
+          ++seen[j];
+          ASSERT_EQ(sum.size(), all.mesh.n_vertices());
+          for (auto v : all.mesh.vertices())
+            for (int i = 0; i < 10; ++i) EXPECT_EQ(sum[v.idx()].q[i], all.q[v.idx() * n + j].q[i]) << j;
+        },
+        threads);
+    EXPECT_EQ(seen, std::vector<int>(n, 1));
+  }
 }

@@ -58,22 +58,16 @@ public:
         if (!mesh_.has_vertex_status() || !mesh_.status(vh).deleted()) update(vh);
       }
     });
-    // Summed in doubles one pose at a time per thread (the same planes in the same order as
-    // accumulate_quadrics()), then stored: a table of doubles for every pose would double the peak.
-    auto pos = [this](VertexHandle v, int j) -> const Eigen::Vector3d& { return exact_[v.idx() * P_ + j]; };
-    const std::vector<double> sheet_weight = detail::sheet_edge_weights(mesh_, P_, pos);
+    // Summed in doubles one pose at a time, then stored: a table of doubles for every pose would double the
+    // peak.
     quadric_.assign(nv * P_, LocalQuadric{});
-    const int pose_threads = std::clamp(threads, 1, std::max(1, P_));
-    run_on_threads(pose_threads, [&](int t) {
-      std::vector<PoseQuadric> sum;
-      for (int j = P_ * t / pose_threads; j < P_ * (t + 1) / pose_threads; ++j) {
-        sum.assign(nv, PoseQuadric{});
-        detail::accumulate_configurations(
-            mesh_, j, j + 1, pos, [&sum](VertexHandle v, int) -> PoseQuadric& { return sum[v.idx()]; },
-            [](auto) { return 1.0; }, sheet_weight);
-        for (size_t i = 0; i < nv; ++i) set_quadric(VertexHandle(static_cast<int>(i)), j, sum[i]);
-      }
-    });
+    accumulate_quadrics_by_configuration(
+        mesh_, P_, [this](VertexHandle v, int j) -> const Eigen::Vector3d& { return exact_[v.idx() * P_ + j]; },
+        [](auto) { return 1.0; },
+        [&](int j, const std::vector<PoseQuadric>& sum) {
+          for (size_t i = 0; i < nv; ++i) set_quadric(VertexHandle(static_cast<int>(i)), j, sum[i]);
+        },
+        threads);
     if (!keep_exact_) std::vector<Eigen::Vector3d>().swap(exact_);
     normal_.clear();
     if (with_normals_) {
@@ -128,7 +122,7 @@ public:
     const double apz = A[2] * px + A[4] * py + A[5] * pz;
     const double bx = l.b[0], by = l.b[1], bz = l.b[2];
     double* q = into.q;
-    q[0] += A[0], q[1] += A[1], q[2] += A[2], q[4] += A[3], q[5] += A[4], q[7] += A[5];
+    for (int i = 0; i < 6; ++i) q[kUpperA[i]] += A[i];
     // b = b' - A p, c = c' + p^T A p - 2 b'^T p, for b', c' about p.
     q[3] += bx - apx, q[6] += by - apy, q[8] += bz - apz;
     q[9] += l.c + (px * apx + py * apy + pz * apz) - 2.0 * (bx * px + by * py + bz * pz);
@@ -139,8 +133,7 @@ public:
     const Eigen::Vector3d p = posed_[k].template cast<double>();
     const Eigen::Vector3d bl = q.A() * p + q.b();
     LocalQuadric& l = quadric_[k];
-    const double A[6] = {q.q[0], q.q[1], q.q[2], q.q[4], q.q[5], q.q[7]};
-    std::copy(A, A + 6, l.A);
+    for (int i = 0; i < 6; ++i) l.A[i] = q.q[kUpperA[i]];
     for (int i = 0; i < 3; ++i) l.b[i] = static_cast<float>(bl[i]);
     l.c = static_cast<float>(q(p));
   }
@@ -189,6 +182,8 @@ private:
   std::vector<Eigen::Vector3f> posed_;
   bool keep_exact_ = false;
   std::vector<Eigen::Vector3d> exact_;  // empty unless keep_exact_
+  // Where LocalQuadric::A's entries sit in PoseQuadric.
+  static constexpr int kUpperA[6] = {0, 1, 2, 4, 5, 7};
   struct LocalQuadric {
     double A[6] = {0, 0, 0, 0, 0, 0};  // the upper triangle of A
     float b[3] = {0, 0, 0}, c = 0;     // about the stored posed position

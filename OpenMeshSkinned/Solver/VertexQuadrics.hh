@@ -110,6 +110,13 @@ void accumulate_configurations(const Mesh& mesh, int j0, int j1, Pos pos, Quadri
   }
 }
 
+/// Shares the configurations [0, n_poses) out among up to \p threads threads in contiguous ranges.
+template <typename F>
+void on_configuration_ranges(int n_poses, int threads, F f) {
+  threads = std::clamp(threads, 1, std::max(1, n_poses));
+  run_on_threads(threads, [&](int t) { f(n_poses * t / threads, n_poses * (t + 1) / threads); });
+}
+
 }  // namespace detail
 
 /** Adds to \p quadric(v, j) the area-weighted planes of v's faces in configuration j (positions
@@ -124,10 +131,28 @@ template <typename Mesh, typename Pos, typename Quadric, typename FaceWeight>
 void accumulate_quadrics(const Mesh& mesh, int n_poses, Pos pos, Quadric quadric, FaceWeight face_weight,
                          int threads = 1) {
   const std::vector<double> sheet_weight = detail::sheet_edge_weights(mesh, n_poses, pos);
-  threads = std::clamp(threads, 1, std::max(1, n_poses));
-  run_on_threads(threads, [&](int t) {
-    detail::accumulate_configurations(mesh, n_poses * t / threads, n_poses * (t + 1) / threads, pos, quadric,
-                                      face_weight, sheet_weight);
+  detail::on_configuration_ranges(n_poses, threads, [&](int j0, int j1) {
+    detail::accumulate_configurations(mesh, j0, j1, pos, quadric, face_weight, sheet_weight);
+  });
+}
+
+/** accumulate_quadrics() one configuration at a time, into a table of its own: \p done(j, sums) receives
+ *  every vertex's quadric in configuration j (sums[v.idx()], from zero), on the thread that summed them.
+ *  Each thread holds one table at a time, not one per configuration: for a caller that stores them in
+ *  another form. The same planes in the same order as accumulate_quadrics(). */
+template <typename Mesh, typename Pos, typename FaceWeight, typename Done>
+void accumulate_quadrics_by_configuration(const Mesh& mesh, int n_poses, Pos pos, FaceWeight face_weight, Done done,
+                                          int threads = 1) {
+  const std::vector<double> sheet_weight = detail::sheet_edge_weights(mesh, n_poses, pos);
+  detail::on_configuration_ranges(n_poses, threads, [&](int j0, int j1) {
+    std::vector<PoseQuadric> sum;
+    for (int j = j0; j < j1; ++j) {
+      sum.assign(mesh.n_vertices(), PoseQuadric{});
+      detail::accumulate_configurations(
+          mesh, j, j + 1, pos, [&sum](typename Mesh::VertexHandle v, int) -> PoseQuadric& { return sum[v.idx()]; },
+          face_weight, sheet_weight);
+      done(j, static_cast<const std::vector<PoseQuadric>&>(sum));
+    }
   });
 }
 
