@@ -8,12 +8,11 @@
  *  the quadrics are built from positions in doubles, and posed() computes one in doubles, or reads it
  *  when set_keep_exact() asked for them to be kept as well (the deviation bound reads them all the time).
  *
- *  Each quadric's b and c are floats too, about its vertex's stored posed position (64 bytes instead of 80,
- *  in the largest table of a run). About the origin they would lose the surface to cancellation far from
- *  it; about the vertex they are the small offsets of the vertex from its planes, each kept to 7 digits.
- *  A stays in doubles: rounded, it would bend flat regions by 10^-7 of their area, which reorders the
- *  collapses of flat parts (bench/README.md, "The tool end to end against gltfpack"). quadric() gives a
- *  quadric back about the origin, in doubles.
+ *  Each quadric is stored about its vertex's stored posed position: about the origin, the surface far from
+ *  it would be lost to cancellation. All ten numbers stay in doubles. With b and c in floats (64 bytes instead
+ *  of 80), L&S's column rendered worse than gltfpack's LODs (bench/README.md, "Image-space judge"): on flat
+ *  regions the geometry prices almost nothing, so the rounding decided which collapses came first there.
+ *  quadric() gives a quadric back about the origin.
  */
 
 #include "OpenMeshSkinned/Skin/LinearBlendSkinning.hh"
@@ -134,8 +133,8 @@ public:
     const Eigen::Vector3d bl = q.A() * p + q.b();
     LocalQuadric& l = quadric_[k];
     for (int i = 0; i < 6; ++i) l.A[i] = q.q[kUpperA[i]];
-    for (int i = 0; i < 3; ++i) l.b[i] = static_cast<float>(bl[i]);
-    l.c = static_cast<float>(q(p));
+    for (int i = 0; i < 3; ++i) l.b[i] = bl[i];
+    l.c = q(p);
   }
 
   /// A rest position with a skin, posed in pose \p j.
@@ -186,7 +185,7 @@ private:
   static constexpr int kUpperA[6] = {0, 1, 2, 4, 5, 7};
   struct LocalQuadric {
     double A[6] = {0, 0, 0, 0, 0, 0};  // the upper triangle of A
-    float b[3] = {0, 0, 0}, c = 0;     // about the stored posed position
+    double b[3] = {0, 0, 0}, c = 0;    // about the stored posed position
   };
   std::vector<LocalQuadric> quadric_;
   bool with_normals_ = false;
