@@ -232,3 +232,10 @@ TEST(MeasuredSurface, PosedAgainItMeasuresAsOneBuiltInThatPose) {
   std::swap(other_triangles.triangles[0][0], other_triangles.triangles[0][1]);
   EXPECT_THROW(reposed.repose(other_triangles), std::invalid_argument);
 }
+
+TEST(MeasuredSurface, RanksItsTrianglesAsItsHierarchyDoes) {
+  const TriangleSoup s = cylinder(0.3);
+  const MeasuredSurface surface(s, 0, 1);
+  const TriangleBvh bvh(s);
+  for (int t = -1; t <= int(s.triangles.size()); ++t) EXPECT_EQ(surface.rank(t), bvh.rank(t)) << t;
+}

@@ -22,6 +22,7 @@ std::vector<Eigen::Vector3d> draw_samples(const TriangleSoup& from, size_t n, st
   for (size_t i = 0; i < from.points.size(); ++i)
     if (used[i]) pts.push_back(from.points[i]);
   vertices = pts.size();
+  if (n == 0) return pts;  // a surface only searched (the final fit's): its areas would go unused
   std::vector<double> cum;
   double total = 0.0;
   for (const auto& f : from.triangles) {
@@ -59,6 +60,22 @@ struct MeasuredSurface::Impl {
   // surface; measured in this order, consecutive queries reach into the same part of the other surface's
   // hierarchy, which stays in cache (bench/README.md, "The tool end to end against gltfpack").
   std::vector<uint32_t> area_order;
+  // The vertex samples likewise, by the first triangle that uses each (the hierarchy's leaf order does
+  // not change when it is posed again): a vertex with no hint of its own starts from the triangle the
+  // vertex before it hit, which lies near its answer.
+  std::vector<uint32_t> vertex_order;
+
+  void order_vertices(const TriangleSoup& soup) {
+    std::vector<int> first(soup.points.size(), -1);
+    for (size_t t = soup.triangles.size(); t-- > 0;)
+      for (int v : soup.triangles[t]) first[v] = int(t);
+    std::vector<std::pair<int, uint32_t>> keyed;
+    for (size_t i = 0; i < soup.points.size(); ++i)
+      if (first[i] >= 0) keyed.emplace_back(bvh.rank(first[i]), uint32_t(keyed.size()));
+    std::sort(keyed.begin(), keyed.end());
+    vertex_order.resize(keyed.size());
+    for (size_t k = 0; k < keyed.size(); ++k) vertex_order[k] = keyed[k].second;
+  }
 
   void draw(const TriangleSoup& soup) {
     std::mt19937_64 rng(seed);
@@ -76,6 +93,7 @@ MeasuredSurface::MeasuredSurface(const TriangleSoup& soup, size_t n, uint64_t se
   impl_->area_samples = n;
   impl_->seed = seed;
   impl_->bvh = TriangleBvh(soup);
+  impl_->order_vertices(soup);
   impl_->draw(soup);
 }
 
@@ -86,6 +104,8 @@ void MeasuredSurface::repose(const TriangleSoup& soup) {
   impl_->draw(soup);
 }
 MeasuredSurface::~MeasuredSurface() = default;
+
+int MeasuredSurface::rank(int triangle) const { return impl_->bvh.rank(triangle); }
 
 double MeasuredSurface::distance(const Eigen::Vector3d& p) const {
   int triangle = -1;
@@ -111,16 +131,23 @@ void one_way(const MeasuredSurface::Impl& from, const MeasuredSurface::Impl& to,
     max_d = std::max(max_d, std::sqrt(d2));
     ++count;
   };
-  int found = -1;
-  for (size_t k = 0; k < from.vertex_samples; ++k) {
-    const double d2 = to.bvh.nearest(from.samples[k], found, hints ? (*hints)[k] : -1);
+  // Searched in leaf order, each from its hint or else from the triangle the query before it hit, and summed
+  // in the order of the samples: the same sum, to the last bit, as one loop over them without hints.
+  int found = -1, previous = -1;
+  std::vector<double> d2(from.vertex_samples);
+  for (uint32_t k : from.vertex_order) {
+    const int hint = hints && (*hints)[k] >= 0 ? (*hints)[k] : previous;
+    d2[k] = to.bvh.nearest(from.samples[k], found, hint);
     if (hints) (*hints)[k] = found;
-    add(d2);
+    if (found >= 0) previous = found;
   }
-  // Searched in leaf order, summed in the order drawn: the same sum, to the last bit, as one loop over them.
+  for (double x : d2) add(x);
   const Eigen::Vector3d* area = from.samples.data() + from.vertex_samples;
-  std::vector<double> d2(from.area_order.size());
-  for (uint32_t k : from.area_order) d2[k] = to.bvh.nearest(area[k], found);
+  d2.assign(from.area_order.size(), 0.0);
+  for (uint32_t k : from.area_order) {
+    d2[k] = to.bvh.nearest(area[k], found, previous);
+    if (found >= 0) previous = found;
+  }
   for (double x : d2) add(x);
 }
 

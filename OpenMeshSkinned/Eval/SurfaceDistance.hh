@@ -48,6 +48,9 @@ public:
   /// faster when the hint lies near it (a query that moved a little since it last hit that triangle).
   double distance(const Eigen::Vector3d& p, int& triangle, int hint) const;
 
+  /// Where soup triangle \p triangle comes in the hierarchy's leaf order (TriangleBvh::rank; -1 outside the soup).
+  int rank(int triangle) const;
+
   struct Impl;
   const Impl& impl() const { return *impl_; }
 

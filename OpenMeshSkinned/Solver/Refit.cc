@@ -163,10 +163,33 @@ std::vector<size_t> strided_samples(const SkinnedMesh& original, size_t n_triang
 // each LOD vertex must stay on.
 struct PoseTargets {
   std::vector<size_t> samples;
+  // The samples in the leaf order of the original's search hierarchy where they lie (set by the thread that
+  // took the first pose): taken in this order, each query can start from the triangle the one before it hit,
+  // which lies near its answer, and consecutive queries reach into the same boxes. Any order gives the same hits.
+  std::vector<uint32_t> order;
   std::vector<std::vector<Eigen::Vector3d>> sample_at;  // pose -> sample -> posed point
   std::vector<std::vector<Eigen::Vector3d>> target;     // pose -> LOD vertex -> point on the posed original
   std::vector<std::vector<char>> has_target;
 };
+
+// The permutation of \p samples (vertex indices below \p n_vertices, then triangle indices offset by it)
+// that sorts them by the rank in \p surface's hierarchy of the triangle each lies on (for a vertex, the first that uses
+// it).
+std::vector<uint32_t> leaf_order(const MeasuredSurface& surface, size_t n_vertices,
+                                 const std::vector<std::array<int, 3>>& triangles, const std::vector<size_t>& samples) {
+  std::vector<int> first(n_vertices, -1);
+  for (size_t t = triangles.size(); t-- > 0;)
+    for (int v : triangles[t]) first[v] = int(t);
+  std::vector<std::pair<int, uint32_t>> keyed(samples.size());
+  for (size_t k = 0; k < samples.size(); ++k) {
+    const size_t i = samples[k];
+    keyed[k] = {surface.rank(i < n_vertices ? first[i] : int(i - n_vertices)), uint32_t(k)};
+  }
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<uint32_t> order(keyed.size());
+  for (size_t k = 0; k < keyed.size(); ++k) order[k] = keyed[k].second;
+  return order;
+}
 
 // Per pose, on threads taking poses in turn (each thread one search hierarchy, posed again pose by pose):
 // the samples posed, and where each LOD vertex lies on the posed original, found once from the
@@ -197,6 +220,7 @@ void find_pose_targets(const SkinnedMesh& lod, const SkinnedMesh& original, cons
       }
     }
     const MeasuredSurface& surface = posed_surface(surfaces[t], posed, 0, 1);
+    if (j == 0) pt.order = leaf_order(surface, original.n_vertices(), triangles, pt.samples);
     const std::vector<Eigen::Vector3d> y = skin_positions(lod, poses[j]);
     int previous = -1;
     for (auto vh : lod.vertices()) {
@@ -222,13 +246,16 @@ void project_samples(const SkinnedMesh& lod, const std::vector<Pose>& poses, con
   std::vector<std::unique_ptr<MeasuredSurface>> surfaces(std::max(1, threads));
   for_each_pose(poses.size(), threads, [&](int t, size_t j) {
     const TriangleSoup lsoup = posed_soup(lod, poses[j]);
-    // After the first round, last round's triangle starts each search (the LOD moved little since).
+    // After the first round, last round's triangle starts each search (the LOD moved little since); in the
+    // first, the one the sample before it hit.
     const MeasuredSurface& lsurf = posed_surface(surfaces[t], lsoup, 0, 1);
     hits[j].resize(pt.samples.size(), Hit{-1, {-1, -1, -1}, Eigen::Vector3d::Zero()});
-    for (size_t s = 0; s < pt.samples.size(); ++s) {
+    int previous = -1;
+    for (uint32_t s : pt.order) {
       Hit& h = hits[j][s];
       int tri = -1;
-      lsurf.distance(pt.sample_at[j][s], tri, h.id);
+      lsurf.distance(pt.sample_at[j][s], tri, h.id >= 0 ? h.id : previous);
+      if (tri >= 0) previous = tri;
       h.id = tri;
       h.tri = {-1, -1, -1};
       if (tri < 0) continue;
