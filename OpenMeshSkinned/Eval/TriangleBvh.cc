@@ -150,6 +150,23 @@ double TriangleBvh::box_distance2(const Node& n, const Eigen::Vector3d& q) const
 
 void TriangleBvh::consider(int s, const Eigen::Vector3d& q, double& best, int& best_id) const {
   const Slot& t = slots_[s];
+  // The triangle's own box first, widened as a leaf's is: most triangles of an open leaf lie farther than
+  // the best already found, and the box says so for a fraction of the closest point's price.
+  if (best < HUGE_VAL) {
+    const Eigen::Vector3d lo = t.corner[0].cwiseMin(t.corner[1]).cwiseMin(t.corner[2]);
+    const Eigen::Vector3d hi = t.corner[0].cwiseMax(t.corner[1]).cwiseMax(t.corner[2]);
+    const double margin = kMarginUlps * std::numeric_limits<double>::epsilon() *
+                          std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
+    double d = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      const double below = lo[i] - margin - q[i], above = q[i] - hi[i] - margin;
+      if (below > 0.0)
+        d += below * below;
+      else if (above > 0.0)
+        d += above * above;
+    }
+    if (d * (1.0 - kSlack) > best) return;
+  }
   Eigen::Vector3d bary;
   const double d = closest_barycentric(t.corner, q, bary);
   if (!(d < HUGE_VAL)) return;  // a query that is not a number is nearest to nothing
