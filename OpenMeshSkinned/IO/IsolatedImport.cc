@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -28,6 +29,8 @@ namespace {
 
 // The child's verdict, first byte of what it sends.
 constexpr char kOk = 'K', kError = 'E', kOutOfMemory = 'M';
+// The child sends its result's size in this many bytes (native order: the same machine) before the result.
+constexpr size_t kSizeBytes = sizeof(uint64_t);
 // What the child prints is kept up to this size (a reader in a loop may print without end).
 constexpr size_t kMaxReaderOutput = 64 << 10;
 
@@ -87,12 +90,23 @@ bool looks_like_oom(const std::string& message) {
   } catch (const std::exception& e) {
     out = (looks_like_oom(e.what()) ? kOutOfMemory : kError) + std::string(e.what());
   }
-  _exit(write_all(fd, out) ? 0 : 1);  // _exit: none of the parent's atexit handlers or buffers run twice
+  // Its size first: the parent takes the whole in one allocation (a string grown by doubling copies the
+  // archive, tens of MB for a large character, into fresh memory at every step).
+  char size[kSizeBytes];
+  const uint64_t n = out.size();
+  std::memcpy(size, &n, kSizeBytes);
+  const bool sent = write_all(fd, std::string(size, kSizeBytes)) && write_all(fd, out);
+  _exit(sent ? 0 : 1);  // _exit: none of the parent's atexit handlers or buffers run twice
 }
 
-// Reads what the child sends (\p bytes) and prints (\p said, up to kMaxReaderOutput) until it closes its end
-// or \p time_limit_seconds (0: none) pass; true when the time ran out.
-bool read_child(int out_fd, int err_fd, double time_limit_seconds, std::string& bytes, std::string& said) {
+// Reads what the child sends (\p bytes, after the size it announces first: \p complete when they agree; taken
+// in one allocation when at most \p most bytes, since a reader gone wrong may have spoilt the size) and prints (\p
+// said, up to kMaxReaderOutput) until it closes its end or \p time_limit_seconds (0: none) pass; true when the time ran
+// out.
+bool read_child(int out_fd, int err_fd, double time_limit_seconds, size_t most, std::string& bytes, bool& complete,
+                std::string& said) {
+  std::string size_bytes;
+  uint64_t announced = 0;
   using Clock = std::chrono::steady_clock;
   const auto deadline = Clock::now() + std::chrono::duration<double>(time_limit_seconds);
   bool timed_out = false, err_open = true;
@@ -121,15 +135,30 @@ bool read_child(int out_fd, int err_fd, double time_limit_seconds, std::string& 
     const ssize_t n = ::read(out_fd, buf, sizeof buf);
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0) break;  // end of file: the child is done (or dead)
-    bytes.append(buf, size_t(n));
+    size_t used = 0;
+    if (size_bytes.size() < kSizeBytes) {
+      used = std::min(kSizeBytes - size_bytes.size(), size_t(n));
+      size_bytes.append(buf, used);
+      if (size_bytes.size() == kSizeBytes) {
+        std::memcpy(&announced, size_bytes.data(), kSizeBytes);
+        if (announced <= most) {
+          try {
+            bytes.reserve(size_t(announced));
+          } catch (const std::exception&) {  // no room in one piece: it grows as it comes
+          }
+        }
+      }
+    }
+    bytes.append(buf + used, size_t(n) - used);
   }
+  complete = size_bytes.size() == kSizeBytes && bytes.size() == announced;
   return timed_out;
 }
 
 // Throws the one-line error the child's end calls for: a time-out, running out of memory, a crash, no or an
 // unreadable result, or the reader's own error.
 void check_verdict(const std::string& path, const ImportOptions& opt, bool timed_out, int status,
-                   const std::string& bytes) {
+                   const std::string& bytes, bool complete) {
   auto fail = [&path](const std::string& what) { return IOError(path + ": " + what); };
   const std::string format = " (format: " + format_name(path) + ")";
   if (timed_out)
@@ -143,7 +172,7 @@ void check_verdict(const std::string& path, const ImportOptions& opt, bool timed
     throw fail(std::string("the reader crashed (SIG") + (name ? name : std::to_string(sig).c_str()) + ") reading it" +
                format);
   }
-  if (bytes.empty() || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+  if (bytes.empty() || !complete || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
     throw fail("the reader stopped without a result reading it" + format);
   if (bytes[0] == kError) throw IOError(bytes.substr(1));  // the child's message already names the file
   if (bytes[0] != kOk) throw fail("the reader sent an unreadable result" + format);
@@ -186,7 +215,10 @@ ImportReport import_isolated(const std::string& path, SkinnedMesh& mesh, const I
   ::close(err[1]);
 
   std::string bytes, said;
-  const bool timed_out = read_child(fds[0], err[0], opt.time_limit_seconds, bytes, said);
+  bool complete = false;
+  // What the child could have held under its memory limit (without one, what a large character's takes).
+  const size_t most = opt.memory_limit_mb > 0 ? opt.memory_limit_mb << 20 : size_t(1) << 32;
+  const bool timed_out = read_child(fds[0], err[0], opt.time_limit_seconds, most, bytes, complete, said);
   ::close(fds[0]);
   ::close(err[0]);
   if (timed_out) ::kill(pid, SIGKILL);
@@ -198,7 +230,7 @@ ImportReport import_isolated(const std::string& path, SkinnedMesh& mesh, const I
     std::istringstream lines(said);
     for (std::string line; std::getline(lines, line);) std::cerr << "reader: " << printable_line(line, 1000) << "\n";
   }
-  check_verdict(path, opt, timed_out, status, bytes);
+  check_verdict(path, opt, timed_out, status, bytes, complete);
   ImportReport rep;
   load_import(bytes.data() + 1, bytes.size() - 1, mesh, rep);
   return rep;
