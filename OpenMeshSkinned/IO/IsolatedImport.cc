@@ -99,10 +99,10 @@ bool looks_like_oom(const std::string& message) {
   _exit(sent ? 0 : 1);  // _exit: none of the parent's atexit handlers or buffers run twice
 }
 
-// Reads what the child sends (\p bytes, after the size it announces first: \p complete when they agree; taken
-// in one allocation when at most \p most bytes, since a reader gone wrong may have spoilt the size) and prints (\p
-// said, up to kMaxReaderOutput) until it closes its end or \p time_limit_seconds (0: none) pass; true when the time ran
-// out.
+// Reads what the child sends into \p bytes and what it prints into \p said (up to kMaxReaderOutput), until it
+// closes its end or \p time_limit_seconds (0: none) pass; true when the time ran out. The child announces its
+// result's size first: \p complete when the two agree. \p bytes takes it in one allocation when it is at most
+// \p most bytes (a reader gone wrong may have spoilt the size).
 bool read_child(int out_fd, int err_fd, double time_limit_seconds, size_t most, std::string& bytes, bool& complete,
                 std::string& said) {
   std::string size_bytes;
