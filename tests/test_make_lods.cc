@@ -96,6 +96,9 @@ TEST(MakeLods, RefusesWithTheCommandLinesMessages) {
   o.method = "best";
   EXPECT_EQ(message(o).rfind("--method must be skinned, ", 0), 0u);
   o = quick({0.5});
+  o.pose_select = "best";
+  EXPECT_EQ(message(o), "--pose-select must be even, spread or ga, got \"best\"");
+  o = quick({0.5});
   o.pose_clip = "run";
   EXPECT_EQ(message(o), "--pose-clip run: no such clip in the mesh (1 clips)");
   o = quick({0.5});

@@ -51,3 +51,21 @@ TEST(PoseSelection, TheGaPutsTheExamplesWhereTheMotionIs) {
   EXPECT_TRUE(at_end_of_bend);
   EXPECT_THROW(select_poses_ga(mesh, {candidates[0]}, 2), std::invalid_argument);
 }
+
+TEST(PoseSelection, SpreadTakesTheDeepestBendFirstThenTheLargestGap) {
+  // The leg's knee bends from 0 to 90 degrees over its one-second clip.
+  const Mesh leg = make_bending_cylinder(8, 16);
+  const auto candidates = candidate_frames(leg, {});
+  const auto one = select_poses_spread(leg, candidates, 1);
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_NEAR(one[0].time, 1.0, 1e-9) << "the frame farthest from the bind pose is the deepest bend";
+  const auto two = select_poses_spread(leg, candidates, 2);
+  ASSERT_EQ(two.size(), 2u);
+  EXPECT_NEAR(two[1].time, 1.0, 1e-9);
+  EXPECT_NEAR(two[0].time, 0.5, 0.1) << "halfway between the bind pose and the deepest bend";
+  EXPECT_EQ(select_poses_spread(leg, candidates, 100).size(), candidates.size());
+  // Held-out frames are never chosen, however deep their bend.
+  for (const auto& t : select_poses_spread(leg, candidate_frames(leg, {{0, 1.0}}), 3))
+    EXPECT_GT(std::abs(t.time - 1.0), 1e-9);
+  EXPECT_THROW(select_poses_spread(leg, {}, 2), std::invalid_argument);
+}

@@ -2,6 +2,7 @@
 
 #include "OpenMeshSkinned/Skin/FrameAnimation.hh"
 #include "OpenMeshSkinned/Skin/LinearBlendSkinning.hh"
+#include "OpenMeshSkinned/Skin/Morph.hh"
 #include "OpenMeshSkinned/Skin/SkinProperties.hh"
 
 #include <algorithm>
@@ -34,21 +35,81 @@ std::vector<PoseTime> candidate_frames(const SkinnedMesh& mesh, const std::vecto
   return out;
 }
 
+namespace {
+
+// The mesh posed at \p t, every \p stride-th vertex only: selection needs the motion, not every vertex, and
+// posing the whole of a large mesh at every candidate frame would cost more than the choice is worth.
+FramePoints strided_posed(const SkinnedMesh& mesh, const Pose& pose, size_t stride) {
+  const auto h = influences_handle(mesh);
+  OpenMesh::VPropHandleT<MorphDeltas> hd;
+  const bool morph = !pose.morph_weights.empty() && morph_deltas_handle(mesh, hd);
+  FramePoints out;
+  for (size_t v = 0; v < mesh.n_vertices(); v += stride) {
+    const auto vh = SkinnedMesh::VertexHandle(int(v));
+    Eigen::Vector3d p = to_eigen(mesh.point(vh));
+    if (mesh.status(vh).deleted()) {
+      out.push_back(p);
+      continue;
+    }
+    if (morph) p = apply_morph(p, mesh.property(hd, vh), pose.morph_weights);
+    out.push_back(skin_point(p, mesh.property(h, vh), pose));
+  }
+  return out;
+}
+
+size_t vertex_stride(const SkinnedMesh& mesh, size_t max_vertices) {
+  return std::max<size_t>(1, (mesh.n_vertices() + max_vertices - 1) / std::max<size_t>(1, max_vertices));
+}
+
+double squared_distance(const FramePoints& a, const FramePoints& b) {
+  double d = 0.0;
+  for (size_t i = 0; i < a.size(); ++i) d += (a[i] - b[i]).squaredNorm();
+  return d;
+}
+
+}  // namespace
+
+std::vector<PoseTime> select_poses_spread(const SkinnedMesh& mesh, const std::vector<PoseTime>& candidates, size_t k,
+                                          size_t max_vertices) {
+  if (candidates.empty()) throw std::invalid_argument("pose selection needs a candidate frame");
+  k = std::min(std::max<size_t>(k, 1), candidates.size());
+  const size_t stride = vertex_stride(mesh, max_vertices);
+  const auto& all = clips(mesh);
+  std::vector<FramePoints> frames;
+  for (const PoseTime& t : candidates)
+    frames.push_back(strided_posed(mesh, sample_pose(skeleton(mesh), all.at(t.clip), t.time), stride));
+  // Farthest first from the bind pose, which is among the examples by default and is what the mesh is at rest.
+  const FramePoints rest = strided_posed(mesh, Pose::identity(skeleton(mesh).size()), stride);
+  std::vector<double> nearest(frames.size());
+  for (size_t f = 0; f < frames.size(); ++f) nearest[f] = squared_distance(frames[f], rest);
+  std::vector<char> chosen(frames.size(), 0);
+  for (size_t n = 0; n < k; ++n) {
+    size_t best = 0;
+    double farthest = -1.0;
+    for (size_t f = 0; f < frames.size(); ++f)
+      if (!chosen[f] && nearest[f] > farthest) farthest = nearest[f], best = f;
+    chosen[best] = 1;
+    for (size_t f = 0; f < frames.size(); ++f)
+      nearest[f] = std::min(nearest[f], squared_distance(frames[f], frames[best]));
+  }
+  std::vector<PoseTime> out;
+  for (size_t f = 0; f < frames.size(); ++f)
+    if (chosen[f]) out.push_back(candidates[f]);
+  return out;
+}
+
 std::vector<PoseTime> select_poses_ga(const SkinnedMesh& mesh, const std::vector<PoseTime>& candidates, size_t k,
                                       size_t max_vertices, const KeyframeGaSettings& settings) {
   if (candidates.size() < 2) throw std::invalid_argument("pose selection needs two or more candidate frames");
   k = std::min(std::max<size_t>(k, 2), candidates.size());
-  const size_t stride = std::max<size_t>(1, (mesh.n_vertices() + max_vertices - 1) / std::max<size_t>(1, max_vertices));
+  const size_t stride = vertex_stride(mesh, max_vertices);
   const auto& all = clips(mesh);
   std::vector<double> start(all.size(), 0.0);
   for (size_t c = 1; c < all.size(); ++c) start[c] = start[c - 1] + all[c - 1].duration;
   std::vector<FramePoints> frames;
   std::vector<double> times;
   for (const PoseTime& t : candidates) {
-    const auto posed = skin_positions(mesh, sample_pose(skeleton(mesh), all.at(t.clip), t.time));
-    FramePoints p;
-    for (size_t v = 0; v < posed.size(); v += stride) p.push_back(posed[v]);
-    frames.push_back(std::move(p));
+    frames.push_back(strided_posed(mesh, sample_pose(skeleton(mesh), all.at(t.clip), t.time), stride));
     // Laid end to end; a tiny gap keeps a clip's end and the next clip's start apart in time.
     times.push_back(start[t.clip] + t.time + 1e-6 * t.clip);
   }

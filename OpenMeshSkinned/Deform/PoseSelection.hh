@@ -1,9 +1,9 @@
 #pragma once
 /** \file PoseSelection.hh
- *  Choosing the example poses the decimater learns from with the report's key-frame GA instead of at even
- *  times: the K frames from which linear interpolation rebuilds all the others best are the ones that
- *  carry the animation's extremes. Works on frame animations and on skinned clips alike (frames are
- *  vertex positions, morph offsets and skin applied).
+ *  Choosing the example poses the decimater learns from among the frames that are not held out, instead of
+ *  at even times: spread over the motion (farthest first), or by the report's key-frame GA (the K frames from
+ *  which linear interpolation rebuilds all the others best). Works on frame animations and on skinned clips
+ *  alike (frames are vertex positions, morph offsets and skin applied).
  */
 
 #include "OpenMeshSkinned/Deform/KeyframeGA.hh"
@@ -26,5 +26,13 @@ std::vector<PoseTime> candidate_frames(const SkinnedMesh& mesh, const std::vecto
  *  and the next clip's first count as neighbours. */
 std::vector<PoseTime> select_poses_ga(const SkinnedMesh& mesh, const std::vector<PoseTime>& candidates, size_t k,
                                       size_t max_vertices = 2000, const KeyframeGaSettings& settings = {});
+
+/** \p k of the \p candidates chosen farthest first: each the frame whose posed positions (of at most
+ *  \p max_vertices vertices, evenly strided) lie farthest, in the sum of squared distances, from the bind pose and
+ *  every frame chosen before it. Evenly spaced times give each clip examples by its length, so a short, violent
+ *  clip (a run beside a long walk) gets few and its deepest bends none; this covers the bends wherever they are.
+ *  In candidate order. Throws std::invalid_argument on no candidates. */
+std::vector<PoseTime> select_poses_spread(const SkinnedMesh& mesh, const std::vector<PoseTime>& candidates, size_t k,
+                                          size_t max_vertices = 2000);
 
 }  // namespace OpenMeshSkinned

@@ -24,11 +24,13 @@ struct LodOptions {
   std::vector<double> ratios = {0.5};
   /// One LOD per triangle count (made largest first; empty: \a ratios).
   std::vector<size_t> faces;
-  int max_influences = 4;         ///< bones per vertex at every level, 1..Influences::kCapacity
-  int poses = 8;                  ///< example poses: evenly spaced times over the clips, plus the bind pose
-  std::string pose_clip;          ///< the clip (name or index) the example poses come from; empty: all, end to end
-  bool bind_pose = true;          ///< the bind pose among the example poses
-  bool pose_select_ga = false;    ///< example poses chosen by the key-frame GA instead of evenly spaced
+  int max_influences = 4;  ///< bones per vertex at every level, 1..Influences::kCapacity
+  int poses = 8;           ///< example poses: evenly spaced times over the clips, plus the bind pose
+  std::string pose_clip;   ///< the clip (name or index) the example poses come from; empty: all, end to end
+  bool bind_pose = true;   ///< the bind pose among the example poses
+  /// How the example poses are chosen: "even" (evenly spaced times), "spread" (farthest first over the motion
+  /// among the frames not held out: select_poses_spread) or "ga" (the key-frame GA among them).
+  std::string pose_select = "even";
   int threads = 0;                ///< 0: the hardware's
   bool evaluate = true;           ///< measure every LOD in held-out frames
   bool per_vertex_error = false;  ///< and keep each LOD vertex's worst held-out error (LodReport::vertex_error)

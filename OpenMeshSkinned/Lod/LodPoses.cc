@@ -32,18 +32,29 @@ LodPoses select_lod_poses(const SkinnedMesh& mesh, const LodOptions& opt, const 
   // them, half are kept back to judge on.
   const size_t stored = frame_times(mesh).size();
   const int k = stored > 0 ? std::min<int>(opt.poses, int((stored + 1) / 2)) : opt.poses;
-  p.schedule = make_pose_schedule(all, k, lod_pose_clip(opt, mesh, name));
+  const int clip = lod_pose_clip(opt, mesh, name);
+  p.schedule = make_pose_schedule(all, k, clip);
   snap_to_frames(p.schedule, frame_times(mesh));
-  if (opt.pose_select_ga) {
-    const auto candidates = candidate_frames(mesh, p.schedule.held_out);
-    if (candidates.size() >= 2) p.schedule.examples = select_poses_ga(mesh, candidates, size_t(k));
+  const std::string& select = opt.pose_select;
+  if (select != "even") {
+    auto candidates = candidate_frames(mesh, p.schedule.held_out);
+    if (clip >= 0)
+      candidates.erase(
+          std::remove_if(candidates.begin(), candidates.end(), [clip](const PoseTime& t) { return t.clip != clip; }),
+          candidates.end());
+    if (select == "ga" && candidates.size() >= 2) p.schedule.examples = select_poses_ga(mesh, candidates, size_t(k));
+    if (select == "spread" && !candidates.empty())
+      p.schedule.examples = select_poses_spread(mesh, candidates, size_t(k));
   }
   p.examples = poses_at(skel, all, p.schedule.examples);
   // The bind pose too, unless asked not to: it is the pose every other tool judges, and a handful of
   // clip frames can miss the neutral configuration entirely.
   if (opt.bind_pose) p.examples.push_back(Pose::identity(skel.size()));
   p.heldout = poses_at(skel, all, p.schedule.held_out.empty() ? p.schedule.examples : p.schedule.held_out);
-  std::string line = name + ": example poses" + (opt.pose_select_ga ? " (chosen by the key-frame GA)" : "") + " at";
+  const char* how = select == "ga"       ? " (chosen by the key-frame GA)"
+                    : select == "spread" ? " (spread over the motion)"
+                                         : "";
+  std::string line = name + ": example poses" + how + " at";
   for (const auto& t : p.schedule.examples) line += " " + all[t.clip].name + "@" + fixed_number(t.time, 3) + "s";
   callbacks.say(line + (opt.bind_pose ? " + bind pose" : ""));
   // Keys of huge but finite values can still overflow once composed down a chain of joints.

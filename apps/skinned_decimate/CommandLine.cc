@@ -112,9 +112,10 @@ void declare_layer_options(CLI::App& app, Options& opt, OptionWords& c) {
                  "algorithm (the deformation-analysis report) so that interpolation rebuilds the others best")
       ->check(CLI::Range(2, 100000));
   app.add_option("--pose-select", c.pose_select,
-                 "How the example poses are chosen: even (evenly spaced times; default) or ga (the key-frame "
-                 "genetic algorithm over the frames that are not held out)")
-      ->check(CLI::IsMember({"even", "ga"}));
+                 "How the example poses are chosen: even (evenly spaced times; default), spread (farthest "
+                 "first over the motion among the frames that are not held out, so that a short clip's deepest "
+                 "bends are seen) or ga (the key-frame genetic algorithm over those frames)")
+      ->check(CLI::IsMember({"even", "spread", "ga"}));
   app.add_option("--segment", opt.segment,
                  "Write the input cut into near-rigid parts (Lee et al.) as OUT.glb, one colour per part, and "
                  "the parts of its faces as OUT.json; without -o nothing is decimated");
@@ -140,7 +141,7 @@ void declare_options(CLI::App& app, Options& opt, OptionWords& c) {
 void finish_options(const CLI::App& app, const OptionWords& c, Options& opt) {
   opt.html_beside = c.assets == "beside";
   opt.anim_frames = c.anim_method == "frames";
-  opt.pose_select_ga = c.pose_select == "ga";
+  opt.pose_select = c.pose_select;
   opt.energy_error = c.error_measure == "energy";
   opt.method_given = app.count("--method") > 0;
   opt.poses_given = app.count("--poses") > 0;

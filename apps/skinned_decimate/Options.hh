@@ -42,12 +42,12 @@ struct Options {
   bool strict_fold = false;     // --strict-fold: never relax the 90-degree fold-over limit
   double max_error = 0.0;       // --max-error E, % of the diagonal: bound on the original's vertices (0: none)
   bool method_given = false;
-  bool sequences = true;        // --no-sequence: a numbered file is one mesh, not a frame of a sequence
-  double fps = 0.0;             // --fps: frame rate of a frame animation (0: 10 for MD2/MD3/MDL, 24 otherwise)
-  size_t keyframes = 0;         // --keyframes K: keep K frames of a frame animation, chosen by the GA (0: all)
-  bool pose_select_ga = false;  // --pose-select ga: example poses chosen by the key-frame GA
-  std::string segment;          // --segment OUT.glb: near-rigid parts, coloured, and OUT.json
-  bool refit = true;            // final fit of the LOD's rest positions in the example poses (--no-refit: off)
+  bool sequences = true;             // --no-sequence: a numbered file is one mesh, not a frame of a sequence
+  double fps = 0.0;                  // --fps: frame rate of a frame animation (0: 10 for MD2/MD3/MDL, 24 otherwise)
+  size_t keyframes = 0;              // --keyframes K: keep K frames of a frame animation, chosen by the GA (0: all)
+  std::string pose_select = "even";  // --pose-select even|spread|ga
+  std::string segment;               // --segment OUT.glb: near-rigid parts, coloured, and OUT.json
+  bool refit = true;                 // final fit of the LOD's rest positions in the example poses (--no-refit: off)
   bool energy_error = false;  // --error energy: the paper's quartic energy as the skinned priority (default: per area)
 };
 

@@ -51,7 +51,7 @@ LodOptions lod_options(const Options& opt, const std::string& method) {
   l.poses = opt.poses;
   l.pose_clip = opt.pose_clip;
   l.bind_pose = opt.bind_pose;
-  l.pose_select_ga = opt.pose_select_ga;
+  l.pose_select = opt.pose_select;
   l.threads = opt.threads;
   l.evaluate = opt.evaluate;
   l.refit = opt.refit;

@@ -20,7 +20,7 @@ namespace {
 using namespace OpenMeshSkinned;
 
 // The make_lods() keywords that choose the frames, and those of the measurement.
-const std::set<std::string> kEvaluateKeywords = {"poses",   "pose_clip",        "bind_pose",    "pose_select_ga",
+const std::set<std::string> kEvaluateKeywords = {"poses",   "pose_clip",        "bind_pose",    "pose_select",
                                                  "threads", "per_vertex_error", "max_memory_mb"};
 
 // (clip, seconds) pairs, the clip by name or index, as frames of \p mesh.
@@ -120,7 +120,7 @@ void add_evaluate(py::module_& m) {
 symmetric surface distances make_lods() reports, in % of the original's rest-pose bounding-box diagonal.
 
 frames: a list of (clip name or index, seconds), e.g. a LodChain's heldout_frames; None: the held-out frames
-make_lods() would judge in, chosen with the keywords poses, pose_clip, bind_pose, pose_select_ga (and
+make_lods() would judge in, chosen with the keywords poses, pose_clip, bind_pose, pose_select (and
 max_memory_mb) as make_lods() takes them. Also threads and per_vertex_error. An original without clips is judged
 in its rest pose. The GIL is released meanwhile; progress as in make_lods(). Returns a HeldOutError.)");
 }

@@ -43,8 +43,10 @@ const std::vector<Field>& fields() {
        },
        [](const LodOptions& o) { return py::cast(o.pose_clip); }},
       field("bind_pose", "bool", "the bind pose among the example poses", &LodOptions::bind_pose),
-      field("pose_select_ga", "bool", "example poses chosen by the key-frame GA instead of evenly spaced",
-            &LodOptions::pose_select_ga),
+      field("pose_select", "str",
+            "how the example poses are chosen: 'even' (evenly spaced times), 'spread' (farthest first over the "
+            "motion) or 'ga' (the key-frame GA)",
+            &LodOptions::pose_select),
       field("threads", "int", "threads for solving and measuring (0: the hardware's)", &LodOptions::threads),
       field("evaluate", "bool", "measure every LOD in held-out frames", &LodOptions::evaluate),
       field("per_vertex_error", "bool", "keep each LOD vertex's worst held-out error (report.vertex_error)",
@@ -142,7 +144,7 @@ std::vector<std::string> tool_arguments(const LodOptions& o) {
   value(o.poses != d.poses, "--poses", std::to_string(o.poses));
   value(o.pose_clip != d.pose_clip, "--pose-clip", o.pose_clip);
   flag(!o.bind_pose, "--no-bind-pose");
-  value(o.pose_select_ga, "--pose-select", "ga");
+  value(o.pose_select != d.pose_select, "--pose-select", o.pose_select);
   value(o.threads != d.threads, "--threads", std::to_string(o.threads));
   flag(!o.evaluate, "--no-eval");
   flag(!o.refit, "--no-refit");

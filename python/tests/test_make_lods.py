@@ -66,6 +66,16 @@ def test_a_lod_saved_from_python_is_the_command_line_s_byte_for_byte(wuson, tmp_
         assert r.returncode == 0, r.stdout + r.stderr
 
 
+def test_poses_spread_over_the_motion_are_the_command_line_s(wuson, tmp_path):
+    status, out, err = cli(WUSON, "-o", tmp_path / "cli.glb", "--ratio", "0.5", "--poses", "3", "--pose-select", "spread")
+    assert status == 0, err
+    assert "example poses (spread over the motion) at" in out + err
+    oms.save(oms.make_lods(wuson, ratios=[0.5], poses=3, pose_select="spread"), tmp_path / "py.glb")
+    assert filecmp.cmp(tmp_path / "cli.glb", tmp_path / "py.glb", shallow=False)
+    with pytest.raises(oms.OptionsError, match='--pose-select must be even, spread or ga, got "best"'):
+        oms.make_lods(wuson, pose_select="best")
+
+
 def test_a_chain_is_saved_as_numbered_files_and_a_mesh_as_one(wuson_lods, tmp_path):
     paths = oms.save(wuson_lods, tmp_path / "hero.glb")
     assert paths == [str(tmp_path / "hero_lod1.glb"), str(tmp_path / "hero_lod2.glb")]
