@@ -13,7 +13,7 @@
 # gltfpack runs with -si R -sv -sp -se 1 -noq and ours is asked for gltfpack's achieved count with --faces.
 # --images keeps one PNG per character, ratio and frame (rows: the directions; columns: original | gltfpack |
 # ours). --size: pixels per side of a view (384); --frames: held-out frames used, evenly thinned (4).
-# OMSK_PEER_ONLY keeps the characters named (e.g. "faerie sydney"). Needs scripts/build and scripts/setup.
+# OMSK_PEER_ONLY keeps the characters named (e.g. "faerie sydney"); OMSK_PEER_EXTRA adds arguments to ours. Needs scripts/build and scripts/setup.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 judge_args=()
@@ -59,7 +59,7 @@ for in in "${inputs[@]}"; do
       printf '%s\t%s\t%s\t0\t-\t-\t-\n' "$name" "$in" "$r" >>"$jobs"
       continue
     fi
-    "$cli" "$in" -o "$ours" --faces "$n" --quiet --no-eval --report "$report" >"$work/ours.log" 2>&1 ||
+    "$cli" "$in" -o "$ours" --faces "$n" --quiet --no-eval --report "$report" ${OMSK_PEER_EXTRA:-} >"$work/ours.log" 2>&1 ||
       { echo "image-judge: skinned-decimate failed on $in:" >&2; cat "$work/ours.log" >&2; exit 1; }
     printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$name" "$in" "$r" "$n" "$gp" "$ours" "$report" >>"$jobs"
   done

@@ -97,7 +97,7 @@ TEST(MakeLods, RefusesWithTheCommandLinesMessages) {
   EXPECT_EQ(message(o).rfind("--method must be skinned, ", 0), 0u);
   o = quick({0.5});
   o.pose_select = "best";
-  EXPECT_EQ(message(o), "--pose-select must be even, spread or ga, got \"best\"");
+  EXPECT_EQ(message(o), "--pose-select must be even, motion, spread or ga, got \"best\"");
   o = quick({0.5});
   o.pose_clip = "run";
   EXPECT_EQ(message(o), "--pose-clip run: no such clip in the mesh (1 clips)");

@@ -1,4 +1,5 @@
-// Example poses chosen by the key-frame GA: they rebuild the unseen frames better than even spacing.
+// Example poses chosen among the frames that are not held out: by the key-frame GA, evenly over the motion,
+// farthest first (Deform/PoseSelection.hh).
 #include "helpers.hh"
 
 #include <OpenMeshSkinned/Deform/PoseSelection.hh>
@@ -68,4 +69,23 @@ TEST(PoseSelection, SpreadTakesTheDeepestBendFirstThenTheLargestGap) {
   for (const auto& t : select_poses_spread(leg, candidate_frames(leg, {{0, 1.0}}), 3))
     EXPECT_GT(std::abs(t.time - 1.0), 1e-9);
   EXPECT_THROW(select_poses_spread(leg, {}, 2), std::invalid_argument);
+}
+
+TEST(PoseSelection, EvenOverTheMotionPutsTheExamplesWhereTheMeshMoves) {
+  // The knee bends over the first third of the frames and then holds: even times would put three of four
+  // examples in the hold, where every frame is the same.
+  const Mesh mesh = bend_then_hold();
+  const auto chosen = select_poses_by_motion(mesh, candidate_frames(mesh, {}), 4);
+  ASSERT_EQ(chosen.size(), 4u);
+  EXPECT_DOUBLE_EQ(chosen.front().time, 0.0);
+  for (size_t i = 0; i < chosen.size(); ++i) {
+    EXPECT_LE(chosen[i].time * 40.0, 14.0 + 1e-9) << "example " << i << " is in the hold";
+    if (i > 0) {
+      EXPECT_GT(chosen[i].time, chosen[i - 1].time);
+    }
+  }
+  // About a third of the bend apart (frames 0, 4.4, 8.9, 13.3 of a linear bend).
+  EXPECT_NEAR(chosen[1].time * 40.0, 4.4, 1.0);
+  EXPECT_NEAR(chosen[2].time * 40.0, 8.9, 1.0);
+  EXPECT_THROW(select_poses_by_motion(mesh, {}, 2), std::invalid_argument);
 }

@@ -98,6 +98,35 @@ std::vector<PoseTime> select_poses_spread(const SkinnedMesh& mesh, const std::ve
   return out;
 }
 
+std::vector<PoseTime> select_poses_by_motion(const SkinnedMesh& mesh, const std::vector<PoseTime>& candidates, size_t k,
+                                             size_t max_vertices) {
+  if (candidates.empty()) throw std::invalid_argument("pose selection needs a candidate frame");
+  k = std::min(std::max<size_t>(k, 1), candidates.size());
+  const size_t stride = vertex_stride(mesh, max_vertices);
+  const auto& all = clips(mesh);
+  std::vector<double> s(candidates.size(), 0.0);
+  FramePoints previous;
+  for (size_t f = 0; f < candidates.size(); ++f) {
+    FramePoints p =
+        strided_posed(mesh, sample_pose(skeleton(mesh), all.at(candidates[f].clip), candidates[f].time), stride);
+    const bool same_clip = f > 0 && candidates[f].clip == candidates[f - 1].clip;
+    s[f] = f == 0 ? 0.0 : s[f - 1] + (same_clip ? std::sqrt(squared_distance(p, previous)) : 0.0);
+    previous = std::move(p);
+  }
+  std::vector<char> chosen(candidates.size(), 0);
+  for (size_t i = 0; i < k; ++i) {
+    const double target = k == 1 ? 0.0 : s.back() * double(i) / double(k - 1);
+    size_t best = candidates.size();
+    for (size_t f = 0; f < candidates.size(); ++f)
+      if (!chosen[f] && (best == candidates.size() || std::abs(s[f] - target) < std::abs(s[best] - target))) best = f;
+    chosen[best] = 1;
+  }
+  std::vector<PoseTime> out;
+  for (size_t f = 0; f < candidates.size(); ++f)
+    if (chosen[f]) out.push_back(candidates[f]);
+  return out;
+}
+
 std::vector<PoseTime> select_poses_ga(const SkinnedMesh& mesh, const std::vector<PoseTime>& candidates, size_t k,
                                       size_t max_vertices, const KeyframeGaSettings& settings) {
   if (candidates.size() < 2) throw std::invalid_argument("pose selection needs two or more candidate frames");

@@ -28,8 +28,9 @@ struct LodOptions {
   int poses = 8;           ///< example poses: evenly spaced times over the clips, plus the bind pose
   std::string pose_clip;   ///< the clip (name or index) the example poses come from; empty: all, end to end
   bool bind_pose = true;   ///< the bind pose among the example poses
-  /// How the example poses are chosen: "even" (evenly spaced times), "spread" (farthest first over the motion
-  /// among the frames not held out: select_poses_spread) or "ga" (the key-frame GA among them).
+  /// How the example poses are chosen: "even" (evenly spaced times), or among the frames not held out: "motion"
+  /// (evenly spaced over the motion: select_poses_by_motion), "spread" (farthest first: select_poses_spread) or
+  /// "ga" (the key-frame GA).
   std::string pose_select = "even";
   int threads = 0;                ///< 0: the hardware's
   bool evaluate = true;           ///< measure every LOD in held-out frames

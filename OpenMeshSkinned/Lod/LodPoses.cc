@@ -45,6 +45,8 @@ LodPoses select_lod_poses(const SkinnedMesh& mesh, const LodOptions& opt, const 
     if (select == "ga" && candidates.size() >= 2) p.schedule.examples = select_poses_ga(mesh, candidates, size_t(k));
     if (select == "spread" && !candidates.empty())
       p.schedule.examples = select_poses_spread(mesh, candidates, size_t(k));
+    if (select == "motion" && !candidates.empty())
+      p.schedule.examples = select_poses_by_motion(mesh, candidates, size_t(k));
   }
   p.examples = poses_at(skel, all, p.schedule.examples);
   // The bind pose too, unless asked not to: it is the pose every other tool judges, and a handful of
@@ -53,6 +55,7 @@ LodPoses select_lod_poses(const SkinnedMesh& mesh, const LodOptions& opt, const 
   p.heldout = poses_at(skel, all, p.schedule.held_out.empty() ? p.schedule.examples : p.schedule.held_out);
   const char* how = select == "ga"       ? " (chosen by the key-frame GA)"
                     : select == "spread" ? " (spread over the motion)"
+                    : select == "motion" ? " (evenly over the motion)"
                                          : "";
   std::string line = name + ": example poses" + how + " at";
   for (const auto& t : p.schedule.examples) line += " " + all[t.clip].name + "@" + fixed_number(t.time, 3) + "s";

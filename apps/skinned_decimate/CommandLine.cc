@@ -112,10 +112,10 @@ void declare_layer_options(CLI::App& app, Options& opt, OptionWords& c) {
                  "algorithm (the deformation-analysis report) so that interpolation rebuilds the others best")
       ->check(CLI::Range(2, 100000));
   app.add_option("--pose-select", c.pose_select,
-                 "How the example poses are chosen: even (evenly spaced times; default), spread (farthest "
-                 "first over the motion among the frames that are not held out, so that a short clip's deepest "
-                 "bends are seen) or ga (the key-frame genetic algorithm over those frames)")
-      ->check(CLI::IsMember({"even", "spread", "ga"}));
+                 "How the example poses are chosen: even (evenly spaced times; default), or among the frames that "
+                 "are not held out: motion (evenly spaced over the motion, so that a short, fast clip gets its "
+                 "share), spread (farthest first over the motion) or ga (the key-frame genetic algorithm)")
+      ->check(CLI::IsMember({"even", "motion", "spread", "ga"}));
   app.add_option("--segment", opt.segment,
                  "Write the input cut into near-rigid parts (Lee et al.) as OUT.glb, one colour per part, and "
                  "the parts of its faces as OUT.json; without -o nothing is decimated");

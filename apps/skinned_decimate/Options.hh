@@ -45,7 +45,7 @@ struct Options {
   bool sequences = true;             // --no-sequence: a numbered file is one mesh, not a frame of a sequence
   double fps = 0.0;                  // --fps: frame rate of a frame animation (0: 10 for MD2/MD3/MDL, 24 otherwise)
   size_t keyframes = 0;              // --keyframes K: keep K frames of a frame animation, chosen by the GA (0: all)
-  std::string pose_select = "even";  // --pose-select even|spread|ga
+  std::string pose_select = "even";  // --pose-select even|motion|spread|ga
   std::string segment;               // --segment OUT.glb: near-rigid parts, coloured, and OUT.json
   bool refit = true;                 // final fit of the LOD's rest positions in the example poses (--no-refit: off)
   bool energy_error = false;  // --error energy: the paper's quartic energy as the skinned priority (default: per area)

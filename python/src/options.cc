@@ -44,8 +44,8 @@ const std::vector<Field>& fields() {
        [](const LodOptions& o) { return py::cast(o.pose_clip); }},
       field("bind_pose", "bool", "the bind pose among the example poses", &LodOptions::bind_pose),
       field("pose_select", "str",
-            "how the example poses are chosen: 'even' (evenly spaced times), 'spread' (farthest first over the "
-            "motion) or 'ga' (the key-frame GA)",
+            "how the example poses are chosen: 'even' (evenly spaced times), 'motion' (evenly spaced over the "
+            "motion), 'spread' (farthest first over the motion) or 'ga' (the key-frame GA)",
             &LodOptions::pose_select),
       field("threads", "int", "threads for solving and measuring (0: the hardware's)", &LodOptions::threads),
       field("evaluate", "bool", "measure every LOD in held-out frames", &LodOptions::evaluate),

@@ -72,9 +72,10 @@ def test_poses_spread_over_the_motion_are_the_command_line_s(wuson, tmp_path):
     assert "example poses (spread over the motion) at" in out + err
     oms.save(oms.make_lods(wuson, ratios=[0.5], poses=3, pose_select="spread"), tmp_path / "py.glb")
     assert filecmp.cmp(tmp_path / "cli.glb", tmp_path / "py.glb", shallow=False)
-    walk = oms.make_lods(wuson, ratios=[0.5], poses=3, pose_select="spread", pose_clip="Wuson_Walk")
-    assert len(walk.example_frames) == 3 and all(clip == "Wuson_Walk" for clip, _ in walk.example_frames)
-    with pytest.raises(oms.OptionsError, match='--pose-select must be even, spread or ga, got "best"'):
+    for how in ("spread", "motion"):
+        walk = oms.make_lods(wuson, ratios=[0.5], poses=3, pose_select=how, pose_clip="Wuson_Walk")
+        assert len(walk.example_frames) == 3 and all(clip == "Wuson_Walk" for clip, _ in walk.example_frames)
+    with pytest.raises(oms.OptionsError, match='--pose-select must be even, motion, spread or ga, got "best"'):
         oms.make_lods(wuson, pose_select="best")
 
 
