@@ -61,6 +61,23 @@ size_t vertex_stride(const SkinnedMesh& mesh, size_t max_vertices) {
   return std::max<size_t>(1, (mesh.n_vertices() + max_vertices - 1) / std::max<size_t>(1, max_vertices));
 }
 
+// Every candidate posed at every \p stride-th vertex.
+std::vector<FramePoints> posed_candidates(const SkinnedMesh& mesh, const std::vector<PoseTime>& candidates,
+                                          size_t stride) {
+  const auto& all = clips(mesh);
+  std::vector<FramePoints> frames;
+  for (const PoseTime& t : candidates)
+    frames.push_back(strided_posed(mesh, sample_pose(skeleton(mesh), all.at(t.clip), t.time), stride));
+  return frames;
+}
+
+std::vector<PoseTime> chosen_of(const std::vector<PoseTime>& candidates, const std::vector<char>& chosen) {
+  std::vector<PoseTime> out;
+  for (size_t f = 0; f < candidates.size(); ++f)
+    if (chosen[f]) out.push_back(candidates[f]);
+  return out;
+}
+
 double squared_distance(const FramePoints& a, const FramePoints& b) {
   double d = 0.0;
   for (size_t i = 0; i < a.size(); ++i) d += (a[i] - b[i]).squaredNorm();
@@ -74,10 +91,7 @@ std::vector<PoseTime> select_poses_spread(const SkinnedMesh& mesh, const std::ve
   if (candidates.empty()) throw std::invalid_argument("pose selection needs a candidate frame");
   k = std::min(std::max<size_t>(k, 1), candidates.size());
   const size_t stride = vertex_stride(mesh, max_vertices);
-  const auto& all = clips(mesh);
-  std::vector<FramePoints> frames;
-  for (const PoseTime& t : candidates)
-    frames.push_back(strided_posed(mesh, sample_pose(skeleton(mesh), all.at(t.clip), t.time), stride));
+  const std::vector<FramePoints> frames = posed_candidates(mesh, candidates, stride);
   // Farthest first from the bind pose, which is among the examples by default and is what the mesh is at rest.
   const FramePoints rest = strided_posed(mesh, Pose::identity(skeleton(mesh).size()), stride);
   std::vector<double> nearest(frames.size());
@@ -92,27 +106,20 @@ std::vector<PoseTime> select_poses_spread(const SkinnedMesh& mesh, const std::ve
     for (size_t f = 0; f < frames.size(); ++f)
       nearest[f] = std::min(nearest[f], squared_distance(frames[f], frames[best]));
   }
-  std::vector<PoseTime> out;
-  for (size_t f = 0; f < frames.size(); ++f)
-    if (chosen[f]) out.push_back(candidates[f]);
-  return out;
+  return chosen_of(candidates, chosen);
 }
 
 std::vector<PoseTime> select_poses_by_motion(const SkinnedMesh& mesh, const std::vector<PoseTime>& candidates, size_t k,
                                              size_t max_vertices) {
   if (candidates.empty()) throw std::invalid_argument("pose selection needs a candidate frame");
   k = std::min(std::max<size_t>(k, 1), candidates.size());
-  const size_t stride = vertex_stride(mesh, max_vertices);
-  const auto& all = clips(mesh);
+  const std::vector<FramePoints> frames = posed_candidates(mesh, candidates, vertex_stride(mesh, max_vertices));
+  // The motion so far at each candidate; a clip's first frame adds nothing (the jump from the clip before is not
+  // motion).
   std::vector<double> s(candidates.size(), 0.0);
-  FramePoints previous;
-  for (size_t f = 0; f < candidates.size(); ++f) {
-    FramePoints p =
-        strided_posed(mesh, sample_pose(skeleton(mesh), all.at(candidates[f].clip), candidates[f].time), stride);
-    const bool same_clip = f > 0 && candidates[f].clip == candidates[f - 1].clip;
-    s[f] = f == 0 ? 0.0 : s[f - 1] + (same_clip ? std::sqrt(squared_distance(p, previous)) : 0.0);
-    previous = std::move(p);
-  }
+  for (size_t f = 1; f < candidates.size(); ++f)
+    s[f] = s[f - 1] +
+           (candidates[f].clip == candidates[f - 1].clip ? std::sqrt(squared_distance(frames[f], frames[f - 1])) : 0.0);
   std::vector<char> chosen(candidates.size(), 0);
   for (size_t i = 0; i < k; ++i) {
     const double target = k == 1 ? 0.0 : s.back() * double(i) / double(k - 1);
@@ -121,10 +128,7 @@ std::vector<PoseTime> select_poses_by_motion(const SkinnedMesh& mesh, const std:
       if (!chosen[f] && (best == candidates.size() || std::abs(s[f] - target) < std::abs(s[best] - target))) best = f;
     chosen[best] = 1;
   }
-  std::vector<PoseTime> out;
-  for (size_t f = 0; f < candidates.size(); ++f)
-    if (chosen[f]) out.push_back(candidates[f]);
-  return out;
+  return chosen_of(candidates, chosen);
 }
 
 std::vector<PoseTime> select_poses_ga(const SkinnedMesh& mesh, const std::vector<PoseTime>& candidates, size_t k,
@@ -135,10 +139,9 @@ std::vector<PoseTime> select_poses_ga(const SkinnedMesh& mesh, const std::vector
   const auto& all = clips(mesh);
   std::vector<double> start(all.size(), 0.0);
   for (size_t c = 1; c < all.size(); ++c) start[c] = start[c - 1] + all[c - 1].duration;
-  std::vector<FramePoints> frames;
+  const std::vector<FramePoints> frames = posed_candidates(mesh, candidates, stride);
   std::vector<double> times;
   for (const PoseTime& t : candidates) {
-    frames.push_back(strided_posed(mesh, sample_pose(skeleton(mesh), all.at(t.clip), t.time), stride));
     // Laid end to end; a tiny gap keeps a clip's end and the next clip's start apart in time.
     times.push_back(start[t.clip] + t.time + 1e-6 * t.clip);
   }

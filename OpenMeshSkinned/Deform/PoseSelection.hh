@@ -36,9 +36,9 @@ std::vector<PoseTime> select_poses_spread(const SkinnedMesh& mesh, const std::ve
                                           size_t max_vertices = 2000);
 
 /** \p k of the \p candidates evenly spaced over the motion: along the candidates in order, each step between two
- *  frames of one clip counts the RMS movement of the posed positions (at most \p max_vertices vertices, evenly
- *  strided), and the frames nearest to k evenly spaced points of that length, both ends included, are taken.
- *  Even times give each clip examples by its length; this gives them by how far the mesh moves, so a short, fast
+ *  frames of one clip counts how far the posed positions move (root of the summed squares, at most \p max_vertices
+ *  vertices, evenly strided), and the frames nearest to k evenly spaced points of that length, both ends included, are
+ * taken. Even times give each clip examples by its length; this gives them by how far the mesh moves, so a short, fast
  *  clip beside a long, slow one (a run beside a walk) gets its share. In candidate order. Throws
  *  std::invalid_argument on no candidates. */
 std::vector<PoseTime> select_poses_by_motion(const SkinnedMesh& mesh, const std::vector<PoseTime>& candidates, size_t k,
