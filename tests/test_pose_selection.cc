@@ -65,9 +65,11 @@ TEST(PoseSelection, SpreadTakesTheDeepestBendFirstThenTheLargestGap) {
   EXPECT_NEAR(two[1].time, 1.0, 1e-9);
   EXPECT_NEAR(two[0].time, 0.5, 0.1) << "halfway between the bind pose and the deepest bend";
   EXPECT_EQ(select_poses_spread(leg, candidates, 100).size(), candidates.size());
-  // Held-out frames are never chosen, however deep their bend.
-  for (const auto& t : select_poses_spread(leg, candidate_frames(leg, {{0, 1.0}}), 3))
-    EXPECT_GT(std::abs(t.time - 1.0), 1e-9);
+  // Without the bind pose among the examples, the first candidate (the straight leg) is taken first.
+  const auto unbound = select_poses_spread(leg, candidates, 2, false);
+  ASSERT_EQ(unbound.size(), 2u);
+  EXPECT_NEAR(unbound[0].time, 0.0, 1e-9);
+  EXPECT_NEAR(unbound[1].time, 1.0, 1e-9);
   EXPECT_THROW(select_poses_spread(leg, {}, 2), std::invalid_argument);
 }
 
@@ -88,4 +90,15 @@ TEST(PoseSelection, EvenOverTheMotionPutsTheExamplesWhereTheMeshMoves) {
   EXPECT_NEAR(chosen[1].time * 40.0, 4.4, 1.0);
   EXPECT_NEAR(chosen[2].time * 40.0, 8.9, 1.0);
   EXPECT_THROW(select_poses_by_motion(mesh, {}, 2), std::invalid_argument);
+}
+
+TEST(PoseSelection, AClipWithoutLengthIsOneCandidate) {
+  Mesh leg = make_bending_cylinder(8, 16);
+  Clip still = clips(leg)[0];
+  still.name = "still";
+  still.duration = 0.0;
+  clips(leg).push_back(still);
+  const auto c = candidate_frames(leg, {});
+  EXPECT_EQ(c.size(), 32u) << "31 frames of the bend and one of the still clip";
+  EXPECT_EQ(std::count_if(c.begin(), c.end(), [](const PoseTime& t) { return t.clip == 1; }), 1);
 }

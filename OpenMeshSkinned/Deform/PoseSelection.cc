@@ -26,9 +26,10 @@ std::vector<PoseTime> candidate_frames(const SkinnedMesh& mesh, const std::vecto
     return out;
   }
   for (size_t c = 0; c < all.size(); ++c) {
-    const size_t n = std::max<size_t>(2, size_t(std::ceil(all[c].duration * fps)) + 1);
+    // A clip without length is one frame, not two copies of it.
+    const size_t n = all[c].duration > 0.0 ? std::max<size_t>(2, size_t(std::ceil(all[c].duration * fps)) + 1) : 1;
     for (size_t i = 0; i < n; ++i) {
-      const PoseTime t{int(c), all[c].duration * double(i) / double(n - 1)};
+      const PoseTime t{int(c), n == 1 ? 0.0 : all[c].duration * double(i) / double(n - 1)};
       if (unseen(t)) out.push_back(t);
     }
   }
@@ -87,21 +88,25 @@ double squared_distance(const FramePoints& a, const FramePoints& b) {
 }  // namespace
 
 std::vector<PoseTime> select_poses_spread(const SkinnedMesh& mesh, const std::vector<PoseTime>& candidates, size_t k,
-                                          size_t max_vertices) {
+                                          bool from_bind_pose, size_t max_vertices) {
   if (candidates.empty()) throw std::invalid_argument("pose selection needs a candidate frame");
   k = std::min(std::max<size_t>(k, 1), candidates.size());
   const size_t stride = vertex_stride(mesh, max_vertices);
   const std::vector<FramePoints> frames = posed_candidates(mesh, candidates, stride);
-  // Farthest first from the bind pose, which is among the examples by default and is what the mesh is at rest.
-  const FramePoints rest = strided_posed(mesh, Pose::identity(skeleton(mesh).size()), stride);
-  std::vector<double> nearest(frames.size());
-  for (size_t f = 0; f < frames.size(); ++f) nearest[f] = squared_distance(frames[f], rest);
+  // The bind pose, when it is an example, is already one: the others are chosen farthest from it too. Without it,
+  // the first candidate starts.
+  std::vector<double> nearest(frames.size(), HUGE_VAL);
+  if (from_bind_pose) {
+    const FramePoints rest = strided_posed(mesh, Pose::identity(skeleton(mesh).size()), stride);
+    for (size_t f = 0; f < frames.size(); ++f) nearest[f] = squared_distance(frames[f], rest);
+  }
   std::vector<char> chosen(frames.size(), 0);
   for (size_t n = 0; n < k; ++n) {
-    size_t best = 0;
-    double farthest = -1.0;
+    // The first unchosen frame unless one lies farther: a distance that is not a number never wins, and never
+    // makes a frame be chosen twice.
+    size_t best = frames.size();
     for (size_t f = 0; f < frames.size(); ++f)
-      if (!chosen[f] && nearest[f] > farthest) farthest = nearest[f], best = f;
+      if (!chosen[f] && (best == frames.size() || nearest[f] > nearest[best])) best = f;
     chosen[best] = 1;
     for (size_t f = 0; f < frames.size(); ++f)
       nearest[f] = std::min(nearest[f], squared_distance(frames[f], frames[best]));
@@ -117,9 +122,10 @@ std::vector<PoseTime> select_poses_by_motion(const SkinnedMesh& mesh, const std:
   // The motion so far at each candidate; a clip's first frame adds nothing (the jump from the clip before is not
   // motion).
   std::vector<double> s(candidates.size(), 0.0);
-  for (size_t f = 1; f < candidates.size(); ++f)
-    s[f] = s[f - 1] +
-           (candidates[f].clip == candidates[f - 1].clip ? std::sqrt(squared_distance(frames[f], frames[f - 1])) : 0.0);
+  for (size_t f = 1; f < candidates.size(); ++f) {
+    const double step = std::sqrt(squared_distance(frames[f], frames[f - 1]));
+    s[f] = s[f - 1] + (candidates[f].clip == candidates[f - 1].clip && std::isfinite(step) ? step : 0.0);
+  }
   std::vector<char> chosen(candidates.size(), 0);
   for (size_t i = 0; i < k; ++i) {
     const double target = k == 1 ? 0.0 : s.back() * double(i) / double(k - 1);

@@ -1,9 +1,11 @@
 #pragma once
 /** \file PoseSelection.hh
  *  Choosing the example poses the decimater learns from among the frames that are not held out, instead of
- *  at even times: spread over the motion (farthest first), or by the report's key-frame GA (the K frames from
+ *  at even times: evenly over the motion, farthest first, or by the report's key-frame GA (the K frames from
  *  which linear interpolation rebuilds all the others best). Works on frame animations and on skinned clips
- *  alike (frames are vertex positions, morph offsets and skin applied).
+ *  alike (frames are vertex positions, morph offsets and skin applied). Motion is measured on the posed
+ *  positions, so a root that travels counts as much as a limb that bends; every candidate frame is held at once
+ *  (at most max_vertices points each).
  */
 
 #include "OpenMeshSkinned/Deform/KeyframeGA.hh"
@@ -28,19 +30,20 @@ std::vector<PoseTime> select_poses_ga(const SkinnedMesh& mesh, const std::vector
                                       size_t max_vertices = 2000, const KeyframeGaSettings& settings = {});
 
 /** \p k of the \p candidates chosen farthest first: each the frame whose posed positions (of at most
- *  \p max_vertices vertices, evenly strided) lie farthest, in the sum of squared distances, from the bind pose and
- *  every frame chosen before it. Evenly spaced times give each clip examples by its length, so a short, violent
+ *  \p max_vertices vertices, evenly strided) lie farthest, in the sum of squared distances, from every frame chosen
+ *  before it and, with \p from_bind_pose (the bind pose is an example too), from the bind pose; without it the
+ *  first candidate is chosen first. Evenly spaced times give each clip examples by its length, so a short, violent
  *  clip (a run beside a long walk) gets few and its deepest bends none; this covers the bends wherever they are.
  *  In candidate order. Throws std::invalid_argument on no candidates. */
 std::vector<PoseTime> select_poses_spread(const SkinnedMesh& mesh, const std::vector<PoseTime>& candidates, size_t k,
-                                          size_t max_vertices = 2000);
+                                          bool from_bind_pose = true, size_t max_vertices = 2000);
 
 /** \p k of the \p candidates evenly spaced over the motion: along the candidates in order, each step between two
  *  frames of one clip counts how far the posed positions move (root of the summed squares, at most \p max_vertices
- *  vertices, evenly strided), and the frames nearest to k evenly spaced points of that length, both ends included, are
- * taken. Even times give each clip examples by its length; this gives them by how far the mesh moves, so a short, fast
- *  clip beside a long, slow one (a run beside a walk) gets its share. In candidate order. Throws
- *  std::invalid_argument on no candidates. */
+ *  vertices, evenly strided), and the frames nearest to k evenly spaced points of that length, both ends
+ *  included, are taken. Even times give each clip examples by its length; this gives them by how far the mesh
+ *  moves, so a short, fast clip beside a long, slow one (a run beside a walk) gets its share. In candidate order.
+ *  Throws std::invalid_argument on no candidates. */
 std::vector<PoseTime> select_poses_by_motion(const SkinnedMesh& mesh, const std::vector<PoseTime>& candidates, size_t k,
                                              size_t max_vertices = 2000);
 

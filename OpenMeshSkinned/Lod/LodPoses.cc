@@ -36,24 +36,29 @@ LodPoses select_lod_poses(const SkinnedMesh& mesh, const LodOptions& opt, const 
   p.schedule = make_pose_schedule(all, k, clip);
   snap_to_frames(p.schedule, frame_times(mesh));
   const std::string& select = opt.pose_select;
+  bool selected = false;  // by something other than even times
   if (select != "even") {
     auto candidates = candidate_frames(mesh, p.schedule.held_out);
     if (clip >= 0)
       candidates.erase(
           std::remove_if(candidates.begin(), candidates.end(), [clip](const PoseTime& t) { return t.clip != clip; }),
           candidates.end());
-    if (select == "ga" && candidates.size() >= 2) p.schedule.examples = select_poses_ga(mesh, candidates, size_t(k));
-    if (select == "spread" && !candidates.empty())
-      p.schedule.examples = select_poses_spread(mesh, candidates, size_t(k));
-    if (select == "motion" && !candidates.empty())
-      p.schedule.examples = select_poses_by_motion(mesh, candidates, size_t(k));
+    selected = candidates.size() >= (select == "ga" ? 2u : 1u);
+    if (!selected)
+      callbacks.warn(name + ": --pose-select " + select + " has too few frames to choose from (the rest are held " +
+                     "out): the example poses are at even times");
+    else
+      p.schedule.examples = select == "ga"       ? select_poses_ga(mesh, candidates, size_t(k))
+                            : select == "spread" ? select_poses_spread(mesh, candidates, size_t(k), opt.bind_pose)
+                                                 : select_poses_by_motion(mesh, candidates, size_t(k));
   }
   p.examples = poses_at(skel, all, p.schedule.examples);
   // The bind pose too, unless asked not to: it is the pose every other tool judges, and a handful of
   // clip frames can miss the neutral configuration entirely.
   if (opt.bind_pose) p.examples.push_back(Pose::identity(skel.size()));
   p.heldout = poses_at(skel, all, p.schedule.held_out.empty() ? p.schedule.examples : p.schedule.held_out);
-  const char* how = select == "ga"       ? " (chosen by the key-frame GA)"
+  const char* how = !selected            ? ""
+                    : select == "ga"     ? " (chosen by the key-frame GA)"
                     : select == "spread" ? " (spread over the motion)"
                     : select == "motion" ? " (evenly over the motion)"
                                          : "";

@@ -67,14 +67,20 @@ def test_a_lod_saved_from_python_is_the_command_line_s_byte_for_byte(wuson, tmp_
 
 
 def test_poses_spread_over_the_motion_are_the_command_line_s(wuson, tmp_path):
-    status, out, err = cli(WUSON, "-o", tmp_path / "cli.glb", "--ratio", "0.5", "--poses", "3", "--pose-select", "spread")
+    args = ["--ratio", "0.5", "--poses", "3", "--pose-select", "spread"]
+    status, out, err = cli(WUSON, "-o", tmp_path / "cli.glb", *args)
     assert status == 0, err
     assert "example poses (spread over the motion) at" in out + err
     oms.save(oms.make_lods(wuson, ratios=[0.5], poses=3, pose_select="spread"), tmp_path / "py.glb")
     assert filecmp.cmp(tmp_path / "cli.glb", tmp_path / "py.glb", shallow=False)
-    for how in ("spread", "motion"):
-        walk = oms.make_lods(wuson, ratios=[0.5], poses=3, pose_select=how, pose_clip="Wuson_Walk")
-        assert len(walk.example_frames) == 3 and all(clip == "Wuson_Walk" for clip, _ in walk.example_frames)
+    even = oms.make_lods(wuson, ratios=[0.5], poses=3, pose_clip="Wuson_Walk").example_frames
+    for how, label in (("spread", "spread over the motion"), ("motion", "evenly over the motion")):
+        chain = oms.make_lods(wuson, ratios=[0.5], poses=3, pose_select=how, pose_clip="Wuson_Walk")
+        walk = chain.example_frames
+        assert len(walk) == 3 and all(clip == "Wuson_Walk" for clip, _ in walk)
+        assert any(f"example poses ({label}) at" in line for line in chain.messages)
+        # The walk moves evenly: spaced over its motion, its poses are even times'; spread's are not.
+        assert (walk != even) == (how == "spread")
     with pytest.raises(oms.OptionsError, match='--pose-select must be even, motion, spread or ga, got "best"'):
         oms.make_lods(wuson, pose_select="best")
 
