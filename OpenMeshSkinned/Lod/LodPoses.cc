@@ -60,8 +60,7 @@ LodPoses select_lod_poses(const SkinnedMesh& mesh, const LodOptions& opt, const 
   const char* how = !selected            ? ""
                     : select == "ga"     ? " (chosen by the key-frame GA)"
                     : select == "spread" ? " (spread over the motion)"
-                    : select == "motion" ? " (evenly over the motion)"
-                                         : "";
+                                         : " (evenly over the motion)";
   std::string line = name + ": example poses" + how + " at";
   for (const auto& t : p.schedule.examples) line += " " + all[t.clip].name + "@" + fixed_number(t.time, 3) + "s";
   callbacks.say(line + (opt.bind_pose ? " + bind pose" : ""));
