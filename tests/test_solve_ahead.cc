@@ -1,9 +1,11 @@
-// SolveAhead: a worker solves submitted edges into the edge cache; its answers are the serial solve's, and
-// an edge whose job it has not started goes back to the mesh thread.
+// SolveAhead: a worker fills and solves submitted edges into the edge cache; its answers are the serial
+// solve's, an edge whose job it has not started goes back to the mesh thread, and a vertex released by the
+// mesh thread is read by no job afterwards.
 #include <OpenMeshSkinned/Solver/SolveAhead.hh>
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <random>
 #include <thread>
@@ -52,26 +54,17 @@ TEST(SolveAhead, TheWorkersAnswersAreTheSerialSolvesAndLandInTheCache) {
   constexpr int kEdges = int(SolveAhead::kRing);  // as many as can wait at once
   std::mt19937 rng(5);
   std::vector<EdgeProblem> problems;
-  std::vector<Influences> skin_a(kEdges), skin_b(kEdges);
-  for (int e = 0; e < kEdges; ++e) problems.push_back(random_problem(rng, &skin_a[e], &skin_b[e]));
+  for (int e = 0; e < kEdges; ++e) problems.push_back(random_problem(rng));
   EdgeCache cache;
   cache.reset(kEdges, 2 * kEdges);
   const SolveSettings settings;
   WeightSolver serial;
-  SolveAhead ahead(cache, kEdges, settings, serial);
-  for (int e = 0; e < kEdges; ++e) {
-    EdgeProblem* p = ahead.reserve(e, 2 * e, 2 * e + 1, 0, 0);
-    ASSERT_NE(p, nullptr);
-    *p = problems[e];
-    if (e % 2 == 0) {
-      ahead.submit();
-    } else {
-      // Every other job leaves the support to the worker, as the decimation does.
-      p->support = 0;
-      p->start.setZero(0);
-      ahead.submit(skin_a[e], skin_b[e]);
-    }
-  }
+  // Edge e joins vertices 2e and 2e + 1; the worker fills its problem, as the decimation's loader does.
+  SolveAhead ahead(cache, kEdges, settings, serial, [&](int a, int b, EdgeProblem& p) {
+    ASSERT_EQ(b, a + 1);
+    p = problems[size_t(a / 2)];
+  });
+  for (int e = 0; e < kEdges; ++e) ASSERT_TRUE(ahead.submit(e, 2 * e, 2 * e + 1, 0, 0));
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
   while (ahead.solved() < kEdges && std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
@@ -99,14 +92,9 @@ TEST(SolveAhead, AJobTheWorkerHasNotStartedGoesBackToTheMeshThread) {
   EdgeCache cache;
   cache.reset(4, 8);
   WeightSolver like;
-  SolveAhead ahead(cache, 4, SolveSettings{}, like);
+  SolveAhead ahead(cache, 4, SolveSettings{}, like, [&](int, int, EdgeProblem& p) { p = random_problem(rng); });
   ahead.stop();  // nothing will be started
-  for (int e = 0; e < 4; ++e) {
-    EdgeProblem* p = ahead.reserve(e, 2 * e, 2 * e + 1, 0, 0);
-    ASSERT_NE(p, nullptr);
-    *p = random_problem(rng);
-    ahead.submit();
-  }
+  for (int e = 0; e < 4; ++e) ASSERT_TRUE(ahead.submit(e, 2 * e, 2 * e + 1, 0, 0));
   for (int e = 0; e < 4; ++e) {
     ahead.settle(e);  // cancels: the entry is the mesh thread's, and empty
     EXPECT_FALSE(cache.has(e, 2 * e, 2 * e + 1));
@@ -120,4 +108,46 @@ TEST(SolveAhead, AJobTheWorkerHasNotStartedGoesBackToTheMeshThread) {
     EXPECT_EQ(got.error, 7.0);
   }
   EXPECT_EQ(ahead.solved(), 0u);
+}
+
+TEST(SolveAhead, AReleasedVertexIsReadByNoJobAfterwards) {
+  std::mt19937 rng(7);
+  const EdgeProblem problem = random_problem(rng);
+  EdgeCache cache;
+  cache.reset(3, 6);
+  WeightSolver like;
+  std::atomic<int> reading{-1};  // the edge whose problem the worker is filling
+  std::atomic<bool> hold{true};  // keeps the worker in the first job's loader
+  std::atomic<int> loaded_after{0};
+  std::atomic<bool> released{false};
+  SolveAhead ahead(cache, 3, SolveSettings{}, like, [&](int a, int, EdgeProblem& p) {
+    reading = a / 2;
+    while (hold) std::this_thread::yield();
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    if (released) ++loaded_after;
+    p = problem;
+  });
+  // Edge 0 (vertices 0, 1) is being filled; edge 1 (vertices 1, 2) waits behind it; edge 2 (vertices 4, 5)
+  // does not touch vertex 1.
+  ASSERT_TRUE(ahead.submit(0, 0, 1, 0, 0));
+  while (reading != 0) std::this_thread::yield();
+  ASSERT_TRUE(ahead.submit(1, 1, 2, 0, 0));
+  ASSERT_TRUE(ahead.submit(2, 4, 5, 0, 0));
+  std::thread let_go([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    hold = false;
+  });
+  ahead.release_vertex(1);  // waits for edge 0's job, drops edge 1's
+  released = true;
+  let_go.join();
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (ahead.solved() < 2 && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  ahead.stop();
+  EXPECT_EQ(loaded_after, 1);  // edge 2 alone was filled after the release
+  EXPECT_EQ(ahead.solved(), 2u);
+  for (int e : {0, 1, 2}) ahead.settle(e);
+  EXPECT_TRUE(cache.has(0, 0, 1));
+  EXPECT_FALSE(cache.has(1, 1, 2));  // the mesh thread's to solve
+  EXPECT_TRUE(cache.has(2, 4, 5));
 }

@@ -39,6 +39,7 @@ public:
    *  stays, and a skin over the cap is reduced by the weight solve). */
   void apply(const CollapseInfo& ci, const CollapseResult* placed) {
     const VertexHandle v0 = ci.v0, v1 = ci.v1;
+    answers_.will_change(v1);
     poses_.merge_quadrics(v0, v1);
     if (placed) {
       const Eigen::Vector3d& p = placed->position;

@@ -144,7 +144,9 @@ public:
    *  model, which need not be safe to call concurrently. */
   void start_solving_ahead(int threads) {
     if (threads > 1 && prepared_ && !model_ && settings_.placement && !ahead_)
-      ahead_ = std::make_unique<SolveAhead>(cache_, mesh_.n_edges(), settings_, weights_);
+      ahead_ = std::make_unique<SolveAhead>(
+          cache_, mesh_.n_edges(), settings_, weights_,
+          [this](int a, int b, EdgeProblem& problem) { load_problem(VertexHandle(a), VertexHandle(b), problem); });
   }
   void stop_solving_ahead() {
     if (!ahead_) return;
@@ -155,6 +157,10 @@ public:
 
   /// \p v changed (position, skin or quadrics): its edges' answers are stale.
   void vertex_changed(VertexHandle v) { cache_.touch(v.idx()); }
+  /// Before \p v's position, skin or quadrics are written: the worker, if any, no longer reads them.
+  void will_change(VertexHandle v) {
+    if (ahead_) ahead_->release_vertex(v.idx());
+  }
 
   /// After \p v0 was collapsed into \p v1: the answers that changed are stale, and the worker (if any)
   /// starts on v1's edges.
@@ -164,17 +170,10 @@ public:
     if (ring_dependent())
       for (auto v : mesh_.vv_range(v1)) cache_.touch(v.idx());
     if (!ahead_) return;
-    // The neighbours' quadrics are read below one after another: ask for all of them at once.
-    for (auto v : mesh_.vv_range(v1)) poses_.prefetch_quadrics(v);
     for (auto h : mesh_.voh_range(v1)) {
       const int a = std::min(v1.idx(), mesh_.to_vertex_handle(h).idx());
       const int b = std::max(v1.idx(), mesh_.to_vertex_handle(h).idx());
-      const int e = mesh_.edge_handle(h).idx();
-      if (EdgeProblem* p = ahead_->reserve(e, a, b, cache_.stamp(a), cache_.stamp(b))) {
-        // The support is found on the worker: the skins are copied, not merged, on the mesh thread.
-        load_poses(VertexHandle(a), VertexHandle(b), *p);
-        ahead_->submit(mesh_.property(h_inf_, VertexHandle(a)), mesh_.property(h_inf_, VertexHandle(b)));
-      }
+      ahead_->submit(mesh_.edge_handle(h).idx(), a, b, cache_.stamp(a), cache_.stamp(b));
     }
   }
 

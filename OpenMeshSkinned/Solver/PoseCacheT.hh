@@ -157,12 +157,6 @@ public:
     }
   }
 
-  /// Starts loading \p v's quadrics into the cache (they are read soon, and are seldom there already).
-  void prefetch_quadrics(VertexHandle v) const {
-    const char* p = reinterpret_cast<const char*>(&quadric_[v.idx() * P_]);
-    for (size_t off = 0; off < P_ * sizeof(LocalQuadric); off += 64) __builtin_prefetch(p + off);
-  }
-
   /// \p into now stands for \p from's faces too.
   void merge_quadrics(VertexHandle from, VertexHandle into) {
     for (int j = 0; j < P_; ++j) {

@@ -1,12 +1,17 @@
 #include "OpenMeshSkinned/Solver/SolveAhead.hh"
 
+#include <utility>
+
 namespace OpenMeshSkinned {
 
-SolveAhead::SolveAhead(EdgeCache& cache, size_t n_edges, const SolveSettings& settings, const WeightSolver& like)
+SolveAhead::SolveAhead(EdgeCache& cache, size_t n_edges, const SolveSettings& settings, const WeightSolver& like,
+                       Loader load)
     : cache_(cache),
       settings_(settings),
+      load_(std::move(load)),
       ring_(std::make_unique<Job[]>(kRing)),
       mark_(std::make_unique<std::atomic<uint32_t>[]>(n_edges)) {
+  for (auto& r : reads_) r = {-1, -1};
   for (size_t e = 0; e < n_edges; ++e) mark_[e].store(kNone, std::memory_order_relaxed);
   weights_.set_regularization(like.regularization());
   weights_.set_force_ceres(like.force_ceres());
@@ -31,40 +36,47 @@ void SolveAhead::settle(int e) {
   }
 }
 
-EdgeProblem* SolveAhead::reserve(int e, int a, int b, uint32_t sa, uint32_t sb) {
-  reserved_ = head_.load(std::memory_order_relaxed);
-  Job& job = ring_[reserved_ % kRing];
+void SolveAhead::release_vertex(int v) {
+  // Queued jobs are dropped first, before the worker can reach them while it finishes the one it holds; its
+  // edge's mark may stay "waiting": settle() and submit() then find no job behind it, as after a slot came
+  // round again. A job the worker holds is then waited for (only the mesh thread queues jobs: a slot it
+  // has seen free stays free).
+  std::array<size_t, kRing> held;
+  size_t n_held = 0;
+  for (size_t i = 0; i < kRing; ++i) {
+    if (reads_[i][0] != v && reads_[i][1] != v) continue;
+    reads_[i] = {-1, -1};
+    int s = kQueued;
+    while (!ring_[i].slot.compare_exchange_weak(s, kFree, std::memory_order_acq_rel) && s == kQueued) {
+    }
+    if (s == kRunning) held[n_held++] = i;
+  }
+  for (size_t k = 0; k < n_held; ++k)
+    while (ring_[held[k]].slot.load(std::memory_order_acquire) != kFree) std::this_thread::yield();
+}
+
+bool SolveAhead::submit(int e, int a, int b, uint32_t sa, uint32_t sb) {
+  const size_t at = head_.load(std::memory_order_relaxed);
+  Job& job = ring_[at % kRing];
   // The slot's last job is dropped if the worker has not reached it; if the worker is reading it, or is
   // solving an earlier job of this edge (it would write the cache entry after this one is queued), this
   // job is not submitted: the mesh thread must not wait, and solves the edge itself if it is asked.
   int s = kQueued;
-  if (!job.slot.compare_exchange_strong(s, kFree, std::memory_order_acq_rel) && s == kRunning) return nullptr;
+  if (!job.slot.compare_exchange_strong(s, kFree, std::memory_order_acq_rel) && s == kRunning) return false;
   uint32_t m = mark_[e].load(std::memory_order_acquire);
-  if ((m & 3u) == kWaiting && !mark_[e].compare_exchange_strong(m, kNone, std::memory_order_acq_rel)) return nullptr;
-  if ((m & 3u) == kSolving) return nullptr;
+  if ((m & 3u) == kWaiting && !mark_[e].compare_exchange_strong(m, kNone, std::memory_order_acq_rel)) return false;
+  if ((m & 3u) == kSolving) return false;
   job.edge = e;
   job.a = a;
   job.b = b;
   job.sa = sa;
   job.sb = sb;
   job.ticket = ++tickets_ & 0x3fffffffu;
-  job.skins_to_set = false;
-  return &job.problem;
-}
-
-void SolveAhead::submit(const Influences& wa, const Influences& wb) {
-  Job& job = ring_[reserved_ % kRing];
-  job.wa = wa;
-  job.wb = wb;
-  job.skins_to_set = true;
-  submit();
-}
-
-void SolveAhead::submit() {
-  Job& job = ring_[reserved_ % kRing];
-  mark_[job.edge].store(job.ticket << 2 | kWaiting, std::memory_order_release);
+  reads_[at % kRing] = {a, b};
+  mark_[e].store(job.ticket << 2 | kWaiting, std::memory_order_release);
   job.slot.store(kQueued, std::memory_order_release);
-  head_.store(reserved_ + 1, std::memory_order_release);
+  head_.store(at + 1, std::memory_order_release);
+  return true;
 }
 
 void SolveAhead::work() {
@@ -81,7 +93,7 @@ void SolveAhead::work() {
     if (!job.slot.compare_exchange_strong(s, kRunning, std::memory_order_acq_rel)) continue;
     uint32_t waiting = job.ticket << 2 | kWaiting;
     if (mark_[job.edge].compare_exchange_strong(waiting, job.ticket << 2 | kSolving, std::memory_order_acq_rel)) {
-      if (job.skins_to_set) job.problem.set_skins(job.wa, job.wb);
+      load_(job.a, job.b, job.problem);
       solve_collapse(job.problem, settings_, weights_, answer_);
       cache_.store_solved(job.edge, job.a, job.b, job.sa, job.sb, answer_);
       mark_[job.edge].store(job.ticket << 2 | kSolved, std::memory_order_release);
