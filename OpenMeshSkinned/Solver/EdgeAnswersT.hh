@@ -203,10 +203,6 @@ private:
   }
   void load_problem(VertexHandle va, VertexHandle vb, EdgeProblem& problem) const {
     problem.set_skins(mesh_.property(h_inf_, va), mesh_.property(h_inf_, vb));
-    load_poses(va, vb, problem);
-  }
-  // All of a problem but its skins: the endpoints' summed quadrics and positions, and the poses.
-  void load_poses(VertexHandle va, VertexHandle vb, EdgeProblem& problem) const {
     problem.use_poses(&poses_.poses());
     problem.resize(poses_.n_poses());
     for (int j = 0; j < poses_.n_poses(); ++j) {

@@ -24,8 +24,6 @@ void JointQuadrics::build(const EdgeProblem& p) {
       }
     }
   }
-  for (int k = 0; k < m_; ++k)
-    for (int l = k + 1; l < m_; ++l) g_[l * kMax + k] = g_[k * kMax + l].transpose();
 }
 
 Eigen::Matrix4d JointQuadrics::blend(const WeightSolver::Vector& a) const {

@@ -30,7 +30,6 @@ public:
   void build(const EdgeProblem& p);
 
   int support() const { return m_; }
-  const Eigen::Matrix4d& G(int k, int l) const { return g_[k * kMax + l]; }
 
   /// C(a) = sum_kl a_k a_l G_kl: the quadric of a vertex with weights \p a, all poses summed.
   Eigen::Matrix4d blend(const WeightSolver::Vector& a) const;
@@ -43,6 +42,7 @@ public:
 
 private:
   int m_ = 0;
+  // G_lk = G_kl^T: only k <= l is built and read.
   std::array<Eigen::Matrix4d, kMax * kMax> g_;
 };
 
