@@ -27,3 +27,22 @@ TEST(LinearBlendSkinning, BindPoseLeavesTheMeshInPlace) {
     EXPECT_GT(normals[fh.idx()].dot(Eigen::Vector3d(c[0], 0, c[2])), 0.0);
   }
 }
+
+TEST(LinearBlendSkinning, APosedVertexIsItsSkinnedPointAndADeletedOneStaysAtRest) {
+  Mesh mesh = make_bending_cylinder(8, 8);
+  Pose pose = Pose::identity(skeleton(mesh).size());
+  pose.joint.back().col(3) = Eigen::Vector3d(0.5, -1, 2);
+  const auto h = influences_handle(mesh);
+  const VertexPoser<Mesh> posed(mesh, pose);
+  size_t moved = 0;
+  for (auto vh : mesh.vertices()) {
+    const Eigen::Vector3d p = posed(vh);
+    EXPECT_TRUE(p.isApprox(skin_point(to_eigen(mesh.point(vh)), mesh.property(h, vh), pose)));
+    moved += !p.isApprox(to_eigen(mesh.point(vh)));
+  }
+  EXPECT_GT(moved, 0u);  // the pose moves part of the tube: the check above is not of the rest pose
+  const auto vh = *mesh.vertices().begin();
+  mesh.delete_vertex(vh, false);
+  EXPECT_TRUE(posed(vh).isApprox(to_eigen(mesh.point(vh))));
+  EXPECT_TRUE(skin_positions(mesh, pose)[vh.idx()].isApprox(to_eigen(mesh.point(vh))));
+}

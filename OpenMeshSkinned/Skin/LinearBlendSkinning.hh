@@ -32,23 +32,35 @@ Eigen::Vector3d to_eigen(const Point& p) {
   return Eigen::Vector3d(p[0], p[1], p[2]);
 }
 
-/// Posed positions of all vertices (indexed by vertex index; deleted vertices get their rest position):
-/// the pose's morph offsets first, then linear blend skinning, as glTF poses a vertex.
+/// Poses one vertex at a time as glTF poses it: the pose's morph offsets first, then linear blend skinning.
+/// A deleted vertex keeps its rest position.
+template <typename Mesh>
+class VertexPoser {
+public:
+  VertexPoser(const Mesh& mesh, const Pose& pose) : mesh_(mesh), pose_(pose), h_(influences_handle(mesh)) {
+    morph_ = !pose.morph_weights.empty() && morph_deltas_handle(mesh, hd_);
+  }
+  Eigen::Vector3d operator()(typename Mesh::VertexHandle vh) const {
+    Eigen::Vector3d rest = to_eigen(mesh_.point(vh));
+    if (mesh_.status(vh).deleted()) return rest;
+    if (morph_) rest = apply_morph(rest, mesh_.property(hd_, vh), pose_.morph_weights);
+    return skin_point(rest, mesh_.property(h_, vh), pose_);
+  }
+
+private:
+  const Mesh& mesh_;
+  const Pose& pose_;
+  OpenMesh::VPropHandleT<Influences> h_;
+  OpenMesh::VPropHandleT<MorphDeltas> hd_;
+  bool morph_ = false;
+};
+
+/// Posed positions of all vertices, indexed by vertex index (VertexPoser).
 template <typename Mesh>
 std::vector<Eigen::Vector3d> skin_positions(const Mesh& mesh, const Pose& pose) {
-  const auto h = influences_handle(mesh);
-  OpenMesh::VPropHandleT<MorphDeltas> hd;
-  const bool morph = !pose.morph_weights.empty() && morph_deltas_handle(mesh, hd);
+  const VertexPoser<Mesh> posed(mesh, pose);
   std::vector<Eigen::Vector3d> out(mesh.n_vertices());
-  for (auto vh : mesh.all_vertices()) {
-    Eigen::Vector3d rest = to_eigen(mesh.point(vh));
-    if (mesh.status(vh).deleted()) {
-      out[vh.idx()] = rest;
-      continue;
-    }
-    if (morph) rest = apply_morph(rest, mesh.property(hd, vh), pose.morph_weights);
-    out[vh.idx()] = skin_point(rest, mesh.property(h, vh), pose);
-  }
+  for (auto vh : mesh.all_vertices()) out[vh.idx()] = posed(vh);
   return out;
 }
 
