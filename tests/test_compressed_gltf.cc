@@ -163,8 +163,9 @@ TEST_P(Compressed, ImportsLikeTheOriginal) {
   for (const std::string& j : joint_names(plain))
     // assimp names its own helper nodes "$…" and unnamed nodes by their index ("nodes[3]"), which a packer
     // may renumber: only the file's names must survive.
-    if (!j.empty() && j.rfind("$", 0) != 0 && j.rfind("nodes[", 0) != 0)
+    if (!j.empty() && j.rfind("$", 0) != 0 && j.rfind("nodes[", 0) != 0) {
       EXPECT_TRUE(packed_joints.count(j)) << "joint " << j << " is lost";
+    }
   ASSERT_EQ(clips(packed).size(), clips(plain).size());
   for (size_t c = 0; c < clips(plain).size(); ++c) {
     EXPECT_EQ(clips(packed)[c].name, clips(plain)[c].name);
