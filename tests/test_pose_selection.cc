@@ -39,6 +39,24 @@ TEST(PoseSelection, CandidatesAreStoredFramesThatAreNotHeldOut) {
   EXPECT_EQ(candidate_frames(leg, {}).size(), 31u);
 }
 
+TEST(PoseSelection, CandidatesOfOneClipAreThatClipsFramesOnly) {
+  Mesh leg = make_bending_cylinder(8, 16);
+  Clip half = clips(leg).at(0);
+  half.name = "half";
+  half.duration = 0.5;
+  clips(leg).push_back(half);
+  EXPECT_EQ(candidate_frames(leg, {}).size(), 31u + 16u);
+  const auto first = candidate_frames(leg, {{1, 0.5 * 7.0 / 15.0}}, 0);
+  EXPECT_EQ(first.size(), 31u) << "a held-out frame of another clip takes none of this one's";
+  for (const auto& t : first) EXPECT_EQ(t.clip, 0);
+  const auto second = candidate_frames(leg, {{1, 0.5 * 7.0 / 15.0}}, 1);
+  EXPECT_EQ(second.size(), 15u);
+  for (const auto& t : second) EXPECT_EQ(t.clip, 1);
+  // A frame animation's stored frames are its one clip's.
+  EXPECT_EQ(candidate_frames(bend_then_hold(), {}, 0).size(), candidate_frames(bend_then_hold(), {}).size());
+  EXPECT_TRUE(candidate_frames(bend_then_hold(), {}, 1).empty());
+}
+
 TEST(PoseSelection, TheGaPutsTheExamplesWhereTheMotionIs) {
   const Mesh mesh = bend_then_hold();
   const auto candidates = candidate_frames(mesh, {});

@@ -2,7 +2,6 @@
 
 #include "OpenMeshSkinned/Skin/FrameAnimation.hh"
 #include "OpenMeshSkinned/Skin/LinearBlendSkinning.hh"
-#include "OpenMeshSkinned/Skin/Morph.hh"
 #include "OpenMeshSkinned/Skin/SkinProperties.hh"
 
 #include <algorithm>
@@ -11,7 +10,8 @@
 
 namespace OpenMeshSkinned {
 
-std::vector<PoseTime> candidate_frames(const SkinnedMesh& mesh, const std::vector<PoseTime>& held_out, double fps) {
+std::vector<PoseTime> candidate_frames(const SkinnedMesh& mesh, const std::vector<PoseTime>& held_out, int clip,
+                                       double fps) {
   const auto& all = clips(mesh);
   std::vector<PoseTime> out;
   const std::vector<double>& stored = frame_times(mesh);
@@ -21,11 +21,13 @@ std::vector<PoseTime> candidate_frames(const SkinnedMesh& mesh, const std::vecto
                         [&](const PoseTime& h) { return h.clip == t.clip && std::abs(h.time - t.time) < 0.5 * step; });
   };
   if (!stored.empty()) {
-    for (double t : stored)
-      if (unseen({0, t})) out.push_back({0, t});
+    if (clip <= 0)
+      for (double t : stored)
+        if (unseen({0, t})) out.push_back({0, t});
     return out;
   }
   for (size_t c = 0; c < all.size(); ++c) {
+    if (clip >= 0 && int(c) != clip) continue;
     // A clip without length is one frame, not two copies of it.
     const size_t n = all[c].duration > 0.0 ? std::max<size_t>(2, size_t(std::ceil(all[c].duration * fps)) + 1) : 1;
     for (size_t i = 0; i < n; ++i) {
@@ -41,20 +43,9 @@ namespace {
 // The mesh posed at \p t, every \p stride-th vertex only: selection needs the motion, not every vertex, and
 // posing the whole of a large mesh at every candidate frame would cost more than the choice is worth.
 FramePoints strided_posed(const SkinnedMesh& mesh, const Pose& pose, size_t stride) {
-  const auto h = influences_handle(mesh);
-  OpenMesh::VPropHandleT<MorphDeltas> hd;
-  const bool morph = !pose.morph_weights.empty() && morph_deltas_handle(mesh, hd);
+  const VertexPoser<SkinnedMesh> posed(mesh, pose);
   FramePoints out;
-  for (size_t v = 0; v < mesh.n_vertices(); v += stride) {
-    const auto vh = SkinnedMesh::VertexHandle(int(v));
-    Eigen::Vector3d p = to_eigen(mesh.point(vh));
-    if (mesh.status(vh).deleted()) {
-      out.push_back(p);
-      continue;
-    }
-    if (morph) p = apply_morph(p, mesh.property(hd, vh), pose.morph_weights);
-    out.push_back(skin_point(p, mesh.property(h, vh), pose));
-  }
+  for (size_t v = 0; v < mesh.n_vertices(); v += stride) out.push_back(posed(SkinnedMesh::VertexHandle(int(v))));
   return out;
 }
 

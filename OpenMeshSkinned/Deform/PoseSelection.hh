@@ -18,8 +18,9 @@ namespace OpenMeshSkinned {
 
 /** The frames to choose from: every stored frame of a frame animation, or every clip sampled \p fps times
  *  a second (both ends included), laid end to end in clip order; frames within half a step of a
- *  \p held_out frame are left out, so that the held-out frames stay unseen. */
-std::vector<PoseTime> candidate_frames(const SkinnedMesh& mesh, const std::vector<PoseTime>& held_out,
+ *  \p held_out frame are left out, so that the held-out frames stay unseen. With \p clip >= 0, that clip's
+ *  frames only. */
+std::vector<PoseTime> candidate_frames(const SkinnedMesh& mesh, const std::vector<PoseTime>& held_out, int clip = -1,
                                        double fps = 30.0);
 
 /** \p k of the \p candidates (k >= 2: the first and the last are always among them) chosen by

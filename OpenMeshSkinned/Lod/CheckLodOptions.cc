@@ -7,6 +7,7 @@
 #include <OpenMeshSkinned/Skin/Influences.hh>
 #include <OpenMeshSkinned/Skin/SkinProperties.hh>
 
+#include <algorithm>
 #include <cmath>
 
 namespace OpenMeshSkinned {
@@ -25,8 +26,9 @@ void check_lod_options(const LodOptions& o) {
     throw LodOptionsError("--max-influences must be 1 to " + std::to_string(Influences::kCapacity));
   if (o.poses < 1 || o.poses > kMaxLodPoses)
     throw LodOptionsError("--poses must be 1 to " + std::to_string(kMaxLodPoses));
-  if (o.pose_select != "even" && o.pose_select != "motion" && o.pose_select != "spread" && o.pose_select != "ga")
-    throw LodOptionsError("--pose-select must be even, motion, spread or ga, got \"" + o.pose_select + "\"");
+  const auto& selections = pose_selections();
+  if (std::find(selections.begin(), selections.end(), o.pose_select) == selections.end())
+    throw LodOptionsError("--pose-select must be " + pose_selection_names() + ", got \"" + o.pose_select + "\"");
   if (!o.method.empty() && !is_lod_method(o.method)) throw LodOptionsError("--method must be " + lod_method_names());
   if (o.threads < 0) throw LodOptionsError("--threads must be 0 (the hardware's) or more");
   for (double v : {o.joint_guard, o.max_error, o.joint_energy, o.anim_error, o.normal_weight})

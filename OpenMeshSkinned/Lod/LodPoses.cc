@@ -11,6 +11,39 @@
 
 namespace OpenMeshSkinned {
 
+namespace {
+
+// Each selection with what the pose list says of it.
+struct Selection {
+  std::string name, label;
+};
+
+const std::vector<Selection>& selections() {
+  static const std::vector<Selection> s = {{"even", ""},
+                                           {"motion", " (evenly over the motion)"},
+                                           {"spread", " (spread over the motion)"},
+                                           {"ga", " (chosen by the key-frame GA)"}};
+  return s;
+}
+
+}  // namespace
+
+const std::vector<std::string>& pose_selections() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n;
+    for (const Selection& s : selections()) n.push_back(s.name);
+    return n;
+  }();
+  return names;
+}
+
+std::string pose_selection_names() {
+  const auto& n = pose_selections();
+  std::string s;
+  for (size_t i = 0; i < n.size(); ++i) s += (i == 0 ? "" : i + 1 == n.size() ? " or " : ", ") + n[i];
+  return s;
+}
+
 std::string fixed_number(double v, int precision) {
   std::ostringstream os;
   os << std::fixed << std::setprecision(precision) << v;
@@ -38,11 +71,7 @@ LodPoses select_lod_poses(const SkinnedMesh& mesh, const LodOptions& opt, const 
   const std::string& select = opt.pose_select;
   bool selected = false;  // by something other than even times
   if (select != "even") {
-    auto candidates = candidate_frames(mesh, p.schedule.held_out);
-    if (clip >= 0)
-      candidates.erase(
-          std::remove_if(candidates.begin(), candidates.end(), [clip](const PoseTime& t) { return t.clip != clip; }),
-          candidates.end());
+    const auto candidates = candidate_frames(mesh, p.schedule.held_out, clip);
     selected = candidates.size() >= (select == "ga" ? 2u : 1u);
     if (!selected)
       callbacks.warn(name + ": --pose-select " + select + " has too few frames to choose from (the rest are held " +
@@ -57,10 +86,10 @@ LodPoses select_lod_poses(const SkinnedMesh& mesh, const LodOptions& opt, const 
   // clip frames can miss the neutral configuration entirely.
   if (opt.bind_pose) p.examples.push_back(Pose::identity(skel.size()));
   p.heldout = poses_at(skel, all, p.schedule.held_out.empty() ? p.schedule.examples : p.schedule.held_out);
-  const char* how = !selected            ? ""
-                    : select == "ga"     ? " (chosen by the key-frame GA)"
-                    : select == "spread" ? " (spread over the motion)"
-                                         : " (evenly over the motion)";
+  std::string how;
+  if (selected)
+    for (const Selection& s : selections())
+      if (s.name == select) how = s.label;
   std::string line = name + ": example poses" + how + " at";
   for (const auto& t : p.schedule.examples) line += " " + all[t.clip].name + "@" + fixed_number(t.time, 3) + "s";
   callbacks.say(line + (opt.bind_pose ? " + bind pose" : ""));

@@ -6,6 +6,7 @@
 #include <OpenMeshSkinned/Lod/LodReport.hh>
 
 #include <string>
+#include <vector>
 
 namespace OpenMeshSkinned {
 
@@ -16,6 +17,11 @@ namespace OpenMeshSkinned {
  *  matrices. \p name names the mesh in messages. */
 LodPoses select_lod_poses(const SkinnedMesh& mesh, const LodOptions& options, const std::string& name = "the mesh",
                           const LodCallbacks& callbacks = {}, bool poses_given = false);
+
+/// LodOptions::pose_select's values, "even" (the default) first.
+const std::vector<std::string>& pose_selections();
+/// pose_selections() as "even, motion, spread or ga", for messages.
+std::string pose_selection_names();
 
 /// \p v with \p precision decimals, fixed: the numbers in messages.
 std::string fixed_number(double v, int precision);

@@ -2,6 +2,7 @@
 
 #include <OpenMeshSkinned/Lod/LodMethods.hh>
 #include <OpenMeshSkinned/Lod/LodOptions.hh>
+#include <OpenMeshSkinned/Lod/LodPoses.hh>
 
 #include <algorithm>
 
@@ -115,7 +116,7 @@ void declare_layer_options(CLI::App& app, Options& opt, OptionWords& c) {
                  "How the example poses are chosen: even (evenly spaced times; default), or among the frames that "
                  "are not held out: motion (evenly spaced over the motion, so that a short, fast clip gets its "
                  "share), spread (farthest first over the motion) or ga (the key-frame genetic algorithm)")
-      ->check(CLI::IsMember({"even", "motion", "spread", "ga"}));
+      ->check(CLI::IsMember(OpenMeshSkinned::pose_selections()));
   app.add_option("--segment", opt.segment,
                  "Write the input cut into near-rigid parts (Lee et al.) as OUT.glb, one colour per part, and "
                  "the parts of its faces as OUT.json; without -o nothing is decimated");
