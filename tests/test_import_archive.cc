@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <cstring>
 #include <string>
 
 using namespace OpenMeshSkinned;
@@ -35,6 +37,21 @@ TEST_P(ArchiveRoundTrip, RebuildsTheSameCharacter) {
   EXPECT_EQ(morph_targets(b).size(), morph_targets(a).size());
   EXPECT_EQ(rb.warnings, ra.warnings);
   EXPECT_EQ(rb.faces, ra.faces);
+  // The same connectivity, handle for handle: what is decimated in the parent is what the reader made.
+  ASSERT_EQ(b.n_halfedges(), a.n_halfedges());
+  for (auto vh : a.vertices()) ASSERT_EQ(b.halfedge_handle(vh), a.halfedge_handle(vh));
+  for (auto fh : a.faces()) ASSERT_EQ(b.halfedge_handle(fh), a.halfedge_handle(fh));
+  for (auto heh : a.halfedges()) {
+    ASSERT_EQ(b.to_vertex_handle(heh), a.to_vertex_handle(heh));
+    ASSERT_EQ(b.next_halfedge_handle(heh), a.next_halfedge_handle(heh));
+    ASSERT_EQ(b.face_handle(heh), a.face_handle(heh));
+    if (a.is_boundary(heh)) {  // no face's corner: its attributes were never set, and arrive as zeros
+      ASSERT_EQ(b.normal(heh), SkinnedMesh::Normal(0, 0, 0));
+      continue;
+    }
+    ASSERT_EQ(b.normal(heh), a.normal(heh));
+    ASSERT_EQ(b.texcoord2D(heh), a.texcoord2D(heh));
+  }
   // Corners, properties and report in the same order: saving again gives the same bytes.
   EXPECT_EQ(save_import(b, rb), bytes);
 }
@@ -60,4 +77,32 @@ TEST(ImportArchive, RefusesBytesThatAreNotOne) {
           }(),
       ImportReport{});
   EXPECT_THROW(load_import(bytes.substr(0, bytes.size() / 2), m, r), IOError);
+}
+
+// The connectivity is taken as sent, so a handle that does not fit is refused before the mesh is built: a
+// crash or an endless walk around a vertex later would not name the archive.
+TEST(ImportArchive, RefusesConnectivityThatDoesNotFit) {
+  SkinnedMesh a;
+  import_skinned(model("X/Testwuson.X"), a);
+  const std::string good = save_import(a, ImportReport{});
+  // The layout: magic and version, then each array as a 64-bit length and its elements: points (3 doubles per
+  // vertex), the vertices' halfedges, the halfedges' vertices, then their next halfedges.
+  const size_t nv = a.n_vertices(), nh = a.n_halfedges();
+  const size_t next_at = 8 + (8 + 24 * nv) + (8 + 4 * nv) + (8 + 4 * nh) + 8;
+  auto with_next = [&](int32_t next_of_first) {
+    std::string bytes = good;
+    std::memcpy(&bytes[next_at], &next_of_first, 4);
+    return bytes;
+  };
+  SkinnedMesh m;
+  ImportReport r;
+  ASSERT_EQ(a.next_halfedge_handle(SkinnedMesh::HalfedgeHandle(0)).idx(), [&] {
+    int32_t n = 0;
+    std::memcpy(&n, &good[next_at], 4);
+    return n;
+  }()) << "the layout above is out of date";
+  EXPECT_NO_THROW(load_import(with_next(a.next_halfedge_handle(SkinnedMesh::HalfedgeHandle(0)).idx()), m, r));
+  EXPECT_THROW(load_import(with_next(int32_t(nh)), m, r), IOError);  // out of range
+  EXPECT_THROW(load_import(with_next(0), m, r), IOError);            // its own next: leaves another vertex
+  EXPECT_THROW(load_import(with_next(-1), m, r), IOError);
 }

@@ -12,8 +12,10 @@
 #include <cereal/types/vector.hpp>
 
 #include <algorithm>
+#include <cstdint>
 #include <istream>
 #include <ostream>
+#include <stdexcept>
 #include <streambuf>
 
 // Fixed-size Eigen types as raw bytes: both ends are the same build on the same machine.
@@ -82,17 +84,20 @@ void serialize(Ar& ar, ImportReport& r) {
 namespace {
 
 constexpr uint32_t kMagic = 0x4b534d4f;  // "OMSK"
-constexpr uint32_t kVersion = 2;
+constexpr uint32_t kVersion = 3;
 
-// The mesh as flat arrays: the face list rebuilds the same connectivity (the importer already split
-// every complex edge and vertex), and corners are stored in each face's vertex order.
+// The mesh as flat arrays, its connectivity as OpenMesh's own handles: the receiver restores them as they
+// are, in linear time (rebuilding with add_face searched every vertex's fan, half of the isolated reader's
+// cost), with the same numbering as the sender's. Corners are per halfedge, border halfedges included (zeros).
 struct Flat {
   std::vector<double> points;
-  std::vector<int32_t> face_vertices, face_material;
-  std::vector<double> corner_normals;           // 3 x 3 per face
-  std::vector<float> corner_uvs;                // 3 x 2 per face
+  std::vector<int32_t> vertex_halfedge;                                // -1: an isolated vertex
+  std::vector<int32_t> halfedge_vertex, halfedge_next, halfedge_face;  // face -1: a border halfedge
+  std::vector<int32_t> face_halfedge, face_material;
+  std::vector<double> corner_normals;           // 3 per halfedge
+  std::vector<float> corner_uvs;                // 2 per halfedge
   std::vector<int32_t> set_kinds, set_indices;  // CornerAttributes.hh's sets: CornerKind, set number
-  std::vector<std::vector<float>> set_values;   // per set: 3 x 4 per face
+  std::vector<std::vector<float>> set_values;   // per set: 4 per halfedge
   std::vector<int32_t> inf_joints;              // Influences::kCapacity per vertex, -1 = none
   std::vector<double> inf_weights;
   std::vector<MorphTarget> morph_targets;
@@ -104,8 +109,9 @@ struct Flat {
 
   template <class Ar>
   void serialize(Ar& ar) {
-    ar(points, face_vertices, face_material, corner_normals, corner_uvs, set_kinds, set_indices, set_values, inf_joints,
-       inf_weights, morph_targets, morph_deltas, skeleton, poses, clips, materials);
+    ar(points, vertex_halfedge, halfedge_vertex, halfedge_next, halfedge_face, face_halfedge, face_material,
+       corner_normals, corner_uvs, set_kinds, set_indices, set_values, inf_joints, inf_weights, morph_targets,
+       morph_deltas, skeleton, poses, clips, materials);
   }
 };
 
@@ -137,6 +143,37 @@ public:
   }
 };
 
+// What the mesh's own code takes for granted of the handles, so that a corrupt archive is refused here and not
+// met as a crash or an endless loop later: every handle in range, a halfedge's next leaves the vertex it
+// reaches, keeps its face, closes a triangle in three steps and is no other halfedge's next, and each element
+// points at one of its own.
+void check_connectivity(const Flat& f) {
+  const int64_t nv = int64_t(f.vertex_halfedge.size()), nh = int64_t(f.halfedge_vertex.size()),
+                nf = int64_t(f.face_halfedge.size());
+  const auto in = [](int64_t i, int64_t n) { return i >= 0 && i < n; };
+  const auto fail = [] { throw IOError("import archive: inconsistent connectivity"); };
+  for (int64_t h = 0; h < nh; ++h)
+    if (!in(f.halfedge_vertex[h], nv) || !in(f.halfedge_next[h], nh) ||
+        (f.halfedge_face[h] != -1 && !in(f.halfedge_face[h], nf)))
+      fail();
+  // next must be a permutation (each halfedge some halfedge's next): else a walk around a border may never
+  // come back to where it started.
+  std::vector<char> reached(size_t(nh), 0);
+  for (int64_t h = 0; h < nh; ++h) {
+    const int32_t n = f.halfedge_next[h];
+    if (reached[n]++) fail();
+    // from(next(h)) = to(opposite(next(h))); the opposite of halfedge i is i ^ 1.
+    if (f.halfedge_vertex[n ^ 1] != f.halfedge_vertex[h] || f.halfedge_face[n] != f.halfedge_face[h]) fail();
+    if (f.halfedge_face[h] != -1 && f.halfedge_next[f.halfedge_next[n]] != h) fail();
+  }
+  for (int64_t v = 0; v < nv; ++v) {
+    const int32_t h = f.vertex_halfedge[v];
+    if (h != -1 && (!in(h, nh) || f.halfedge_vertex[h ^ 1] != v)) fail();
+  }
+  for (int64_t i = 0; i < nf; ++i)
+    if (!in(f.face_halfedge[i], nh) || f.halfedge_face[f.face_halfedge[i]] != i) fail();
+}
+
 }  // namespace
 
 std::string save_import(const SkinnedMesh& mesh, const ImportReport& report) {
@@ -151,19 +188,30 @@ void append_import(const SkinnedMesh& mesh, const ImportReport& report, std::str
   const auto h_fmat = face_material_handle(mesh);
   OpenMesh::VPropHandleT<MorphDeltas> h_delta;
   const bool morphs = morph_deltas_handle(mesh, h_delta);
+  // The handles are sent as they are: an element deleted but not collected would leave a hole in them.
+  if (mesh.has_vertex_status() && mesh.has_edge_status() && mesh.has_face_status()) {
+    const auto deleted = [&](auto range) {
+      return std::any_of(range.begin(), range.end(), [&](auto h) { return mesh.status(h).deleted(); });
+    };
+    if (deleted(mesh.all_vertices()) || deleted(mesh.all_edges()) || deleted(mesh.all_faces()))
+      throw std::logic_error("import archive: the mesh has deleted elements (garbage_collection() first)");
+  }
   // Sized up front: grown by doubling, each array is copied and its new pages faulted in again and again.
-  const size_t nv = mesh.n_vertices(), nf = mesh.n_faces(), kc = Influences::kCapacity;
+  const size_t nv = mesh.n_vertices(), nh = mesh.n_halfedges(), nf = mesh.n_faces(), kc = Influences::kCapacity;
   f.points.reserve(3 * nv);
+  f.vertex_halfedge.reserve(nv);
   f.inf_joints.reserve(kc * nv);
   f.inf_weights.reserve(kc * nv);
   if (morphs) f.morph_deltas.reserve(nv);
   f.face_material.reserve(nf);
-  f.face_vertices.reserve(3 * nf);
-  f.corner_normals.reserve(9 * nf);
-  f.corner_uvs.reserve(6 * nf);
+  f.face_halfedge.reserve(nf);
+  for (auto* a : {&f.halfedge_vertex, &f.halfedge_next, &f.halfedge_face}) a->reserve(nh);
+  f.corner_normals.reserve(3 * nh);
+  f.corner_uvs.reserve(2 * nh);
   for (auto vh : mesh.vertices()) {
     const auto& p = mesh.point(vh);
     f.points.insert(f.points.end(), {p[0], p[1], p[2]});
+    f.vertex_halfedge.push_back(mesh.halfedge_handle(vh).idx());
     const Influences& inf = mesh.property(h_inf, vh);
     for (int k = 0; k < Influences::kCapacity; ++k) {
       f.inf_joints.push_back(k < inf.size() ? inf[k].joint : -1);
@@ -177,20 +225,25 @@ void append_import(const SkinnedMesh& mesh, const ImportReport& report, std::str
     f.set_indices.push_back(c.set);
   }
   f.set_values.resize(sets.size());
-  for (auto& v : f.set_values) v.reserve(12 * nf);
+  for (auto& v : f.set_values) v.reserve(4 * nh);
+  for (auto heh : mesh.halfedges()) {
+    f.halfedge_vertex.push_back(mesh.to_vertex_handle(heh).idx());
+    f.halfedge_next.push_back(mesh.next_halfedge_handle(heh).idx());
+    f.halfedge_face.push_back(mesh.face_handle(heh).idx());
+    // A border halfedge is no face's corner: what its attributes hold was never set (zeros are sent).
+    const bool corner = !mesh.is_boundary(heh);
+    const auto n = corner ? mesh.normal(heh) : SkinnedMesh::Normal(0, 0, 0);
+    const auto t = corner ? mesh.texcoord2D(heh) : SkinnedMesh::TexCoord2D(0, 0);
+    f.corner_normals.insert(f.corner_normals.end(), {n[0], n[1], n[2]});
+    f.corner_uvs.insert(f.corner_uvs.end(), {t[0], t[1]});
+    for (size_t i = 0; i < sets.size(); ++i) {
+      const OpenMesh::Vec4f x = corner ? mesh.property(sets[i].handle, heh) : OpenMesh::Vec4f(0, 0, 0, 0);
+      f.set_values[i].insert(f.set_values[i].end(), x.data(), x.data() + 4);
+    }
+  }
   for (auto fh : mesh.faces()) {
     f.face_material.push_back(mesh.property(h_fmat, fh));
-    for (auto heh : mesh.fh_range(fh)) {
-      f.face_vertices.push_back(mesh.to_vertex_handle(heh).idx());
-      const auto& n = mesh.normal(heh);
-      const auto& t = mesh.texcoord2D(heh);
-      f.corner_normals.insert(f.corner_normals.end(), {n[0], n[1], n[2]});
-      f.corner_uvs.insert(f.corner_uvs.end(), {t[0], t[1]});
-      for (size_t i = 0; i < sets.size(); ++i) {
-        const OpenMesh::Vec4f& x = mesh.property(sets[i].handle, heh);
-        f.set_values[i].insert(f.set_values[i].end(), x.data(), x.data() + 4);
-      }
-    }
+    f.face_halfedge.push_back(mesh.halfedge_handle(fh).idx());
   }
   f.morph_targets = morph_targets(mesh);
   f.skeleton = skeleton(mesh);
@@ -199,8 +252,8 @@ void append_import(const SkinnedMesh& mesh, const ImportReport& report, std::str
   f.materials = materials(mesh);
 
   out.reserve(out.size() + 8 * (f.points.size() + f.corner_normals.size() + f.inf_weights.size()) +
-              4 * (f.face_vertices.size() + f.face_material.size() + f.corner_uvs.size() + f.inf_joints.size()) +
-              (1 << 16));
+              4 * (f.vertex_halfedge.size() + 3 * nh + 2 * nf + f.corner_uvs.size() + f.inf_joints.size()) +
+              16 * nh * sets.size() + (1 << 16));
   AppendBuf buf(out);
   std::ostream os(&buf);
   cereal::BinaryOutputArchive ar(os);
@@ -224,23 +277,25 @@ void load_import(const char* data, size_t size, SkinnedMesh& mesh, ImportReport&
   } catch (const cereal::Exception& e) {
     throw IOError(std::string("import archive: truncated or corrupt (") + e.what() + ")");
   }
-  const size_t nv = f.points.size() / 3, nf = f.face_material.size();
+  const size_t nv = f.points.size() / 3, nh = f.halfedge_vertex.size(), nf = f.face_material.size();
   const size_t kc = Influences::kCapacity;
-  if (f.points.size() != 3 * nv || f.face_vertices.size() != 3 * nf || f.corner_normals.size() != 9 * nf ||
-      f.corner_uvs.size() != 6 * nf || f.inf_joints.size() != kc * nv || f.inf_weights.size() != kc * nv ||
+  if (f.points.size() != 3 * nv || f.vertex_halfedge.size() != nv || nh % 2 != 0 || f.halfedge_next.size() != nh ||
+      f.halfedge_face.size() != nh || f.face_halfedge.size() != nf || f.corner_normals.size() != 3 * nh ||
+      f.corner_uvs.size() != 2 * nh || f.inf_joints.size() != kc * nv || f.inf_weights.size() != kc * nv ||
       (!f.morph_deltas.empty() && f.morph_deltas.size() != nv) || f.set_indices.size() != f.set_kinds.size() ||
       f.set_values.size() != f.set_kinds.size() ||
-      std::any_of(f.set_values.begin(), f.set_values.end(), [nf](const auto& v) { return v.size() != 12 * nf; }))
+      std::any_of(f.set_values.begin(), f.set_values.end(), [nh](const auto& v) { return v.size() != 4 * nh; }))
     throw IOError("import archive: inconsistent array sizes");
+  check_connectivity(f);
 
   mesh = SkinnedMesh();  // a fresh mesh: clear() would keep the properties (skeleton, clips) of an earlier use
   request_skinned_attributes(mesh);
   const auto h_inf = add_skin(mesh);
   const auto h_fmat = face_material_handle(mesh);
   // Every array (and every per-element property) would otherwise grow by doubling and keep up to half its
-  // capacity unused for the whole run (measured: 4.7 MB of the CLI's peak on a 240k-triangle mesh). A closed
-  // triangle mesh has 3F/2 edges; the margins cover open borders and the vertices non-manifold repair adds.
-  mesh.reserve(nv + nv / 32 + 16, nf + nf / 2 + nf / 32 + 16, nf);
+  // capacity unused for the whole run (measured: 4.7 MB of the CLI's peak on a 240k-triangle mesh). The
+  // margins cover what later steps may add.
+  mesh.reserve(nv + nv / 32 + 16, nh / 2 + nh / 64 + 16, nf + nf / 32 + 16);
   OpenMesh::VPropHandleT<MorphDeltas> h_delta;
   if (!f.morph_targets.empty()) h_delta = add_morph_targets(mesh);
   std::vector<CornerChannel> sets;
@@ -259,25 +314,25 @@ void load_import(const char* data, size_t size, SkinnedMesh& mesh, ImportReport&
     mesh.property(h_inf, vh) = inf;
     if (!f.morph_targets.empty()) mesh.property(h_delta, vh) = f.morph_deltas.at(v);
   }
+  for (size_t v = 0; v < nv; ++v)
+    mesh.set_halfedge_handle(SkinnedMesh::VertexHandle(int(v)), SkinnedMesh::HalfedgeHandle(f.vertex_halfedge[v]));
+  for (size_t e = 0; e < nh / 2; ++e)  // new_edge(from, to) makes 2e (to `to`) and 2e + 1 (to `from`)
+    mesh.new_edge(SkinnedMesh::VertexHandle(f.halfedge_vertex[2 * e + 1]),
+                  SkinnedMesh::VertexHandle(f.halfedge_vertex[2 * e]));
   for (size_t i = 0; i < nf; ++i) {
-    std::vector<SkinnedMesh::VertexHandle> vs;
-    for (int c = 0; c < 3; ++c) {
-      const int32_t v = f.face_vertices[3 * i + c];
-      if (v < 0 || size_t(v) >= nv) throw IOError("import archive: face index out of range");
-      vs.push_back(mesh.vertex_handle(v));
-    }
-    const auto fh = mesh.add_face(vs);
-    if (!fh.is_valid()) throw IOError("import archive: a face cannot be rebuilt");
+    const auto fh = mesh.new_face();
+    mesh.set_halfedge_handle(fh, SkinnedMesh::HalfedgeHandle(f.face_halfedge[i]));
     mesh.property(h_fmat, fh) = f.face_material[i];
-    for (auto heh : mesh.fh_range(fh))
-      for (int c = 0; c < 3; ++c) {
-        if (vs[c] != mesh.to_vertex_handle(heh)) continue;
-        const double* n = &f.corner_normals[9 * i + 3 * c];
-        mesh.set_normal(heh, SkinnedMesh::Normal(n[0], n[1], n[2]));
-        mesh.set_texcoord2D(heh, SkinnedMesh::TexCoord2D(f.corner_uvs[6 * i + 2 * c], f.corner_uvs[6 * i + 2 * c + 1]));
-        for (size_t s = 0; s < sets.size(); ++s)
-          mesh.property(sets[s].handle, heh) = OpenMesh::Vec4f(&f.set_values[s][12 * i + 4 * c]);
-      }
+  }
+  for (size_t i = 0; i < nh; ++i) {
+    const SkinnedMesh::HalfedgeHandle heh{int(i)};
+    mesh.set_next_halfedge_handle(heh, SkinnedMesh::HalfedgeHandle(f.halfedge_next[i]));
+    mesh.set_face_handle(heh, SkinnedMesh::FaceHandle(f.halfedge_face[i]));
+    const double* n = &f.corner_normals[3 * i];
+    mesh.set_normal(heh, SkinnedMesh::Normal(n[0], n[1], n[2]));
+    mesh.set_texcoord2D(heh, SkinnedMesh::TexCoord2D(f.corner_uvs[2 * i], f.corner_uvs[2 * i + 1]));
+    for (size_t s = 0; s < sets.size(); ++s)
+      mesh.property(sets[s].handle, heh) = OpenMesh::Vec4f(&f.set_values[s][4 * i]);
   }
   mesh.update_face_normals();
   for (auto fh : mesh.faces()) {
