@@ -294,8 +294,8 @@ void load_import(const char* data, size_t size, SkinnedMesh& mesh, ImportReport&
   const auto h_fmat = face_material_handle(mesh);
   // Every array (and every per-element property) would otherwise grow by doubling and keep up to half its
   // capacity unused for the whole run (measured: 4.7 MB of the CLI's peak on a 240k-triangle mesh). The
-  // margins cover what later steps may add.
-  mesh.reserve(nv + nv / 32 + 16, nh / 2 + nh / 64 + 16, nf + nf / 32 + 16);
+  // margins are the vertices and edges later repair may add; faces are only removed.
+  mesh.reserve(nv + nv / 32 + 16, nh / 2 + nf / 32 + 16, nf);
   OpenMesh::VPropHandleT<MorphDeltas> h_delta;
   if (!f.morph_targets.empty()) h_delta = add_morph_targets(mesh);
   std::vector<CornerChannel> sets;
