@@ -19,6 +19,7 @@
 #include "OpenMeshSkinned/Skin/SkinProperties.hh"
 #include "OpenMeshSkinned/Solver/NormalQuadric.hh"
 #include "OpenMeshSkinned/Solver/PoseQuadric.hh"
+#include "OpenMeshSkinned/Solver/ThreadFill.hh"
 #include "OpenMeshSkinned/Solver/Threads.hh"
 #include "OpenMeshSkinned/Solver/VertexQuadrics.hh"
 
@@ -46,11 +47,11 @@ public:
         throw std::invalid_argument("example pose \"" + p.label + "\" has a non-finite transform or morph weight");
     P_ = static_cast<int>(poses_.size());
     const size_t nv = mesh_.n_vertices();
-    // update() fills the doubles while exact_ holds any: kept only when asked for, after the quadrics.
-    std::vector<LocalQuadric>().swap(quadric_);  // update() moves stored quadrics: none yet
-    posed_.assign(nv * P_, Eigen::Vector3f::Zero());
-    exact_.assign(nv * P_, Eigen::Vector3d::Zero());
     threads = std::clamp(threads, 1, int(nv / 4096) + 1);
+    // update() fills the doubles while exact_ holds any: kept only when asked for, after the quadrics.
+    ThreadTable<LocalQuadric>().swap(quadric_);  // update() moves stored quadrics: none yet
+    fill_on_threads(posed_, nv * P_, Eigen::Vector3f::Zero().eval(), threads);
+    fill_on_threads(exact_, nv * P_, Eigen::Vector3d::Zero().eval(), threads);
     run_on_threads(threads, [&](int t) {  // each thread poses its own range of vertices
       for (size_t i = nv * t / threads; i < nv * (t + 1) / threads; ++i) {
         const VertexHandle vh(static_cast<int>(i));
@@ -59,7 +60,7 @@ public:
     });
     // Summed in doubles one pose at a time, then stored: a table of doubles for every pose would double the
     // peak.
-    quadric_.assign(nv * P_, LocalQuadric{});
+    fill_on_threads(quadric_, nv * P_, LocalQuadric{}, threads);
     accumulate_quadrics_by_configuration(
         mesh_, P_, [this](VertexHandle v, int j) -> const Eigen::Vector3d& { return exact_[v.idx() * P_ + j]; },
         [](auto) { return 1.0; },
@@ -67,7 +68,7 @@ public:
           for (size_t i = 0; i < nv; ++i) set_quadric(VertexHandle(static_cast<int>(i)), j, sum[i]);
         },
         threads);
-    if (!keep_exact_) std::vector<Eigen::Vector3d>().swap(exact_);
+    if (!keep_exact_) ThreadTable<Eigen::Vector3d>().swap(exact_);
     normal_.clear();
     if (with_normals_) {
       // Scaled so that a normal off by one radian over a face weighs as much, per pose, as the face moved by
@@ -172,16 +173,17 @@ private:
   OpenMesh::VPropHandleT<Influences> h_inf_;
   std::vector<Pose> poses_;
   int P_ = 0;
-  std::vector<Eigen::Vector3f> posed_;
+  ThreadTable<Eigen::Vector3f> posed_;
   bool keep_exact_ = false;
-  std::vector<Eigen::Vector3d> exact_;  // empty unless keep_exact_
+  ThreadTable<Eigen::Vector3d> exact_;  // empty unless keep_exact_
   // Where LocalQuadric::A's entries sit in PoseQuadric.
   static constexpr int kUpperA[6] = {0, 1, 2, 4, 5, 7};
   struct LocalQuadric {
-    double A[6] = {0, 0, 0, 0, 0, 0};  // the upper triangle of A
-    double b[3] = {0, 0, 0}, c = 0;    // about the stored posed position
+    // No initialisers: trivial, so that fill_on_threads() is the table's first write. LocalQuadric{} is zero.
+    double A[6];     // the upper triangle of A
+    double b[3], c;  // about the stored posed position
   };
-  std::vector<LocalQuadric> quadric_;
+  ThreadTable<LocalQuadric> quadric_;
   bool with_normals_ = false;
   std::vector<PoseQuadric> normal_;  // per vertex; empty unless with_normals_
 };
