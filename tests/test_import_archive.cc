@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <vector>
 
 using namespace OpenMeshSkinned;
 
@@ -105,4 +106,35 @@ TEST(ImportArchive, RefusesConnectivityThatDoesNotFit) {
   EXPECT_THROW(load_import(with_next(int32_t(nh)), m, r), IOError);  // out of range
   EXPECT_THROW(load_import(with_next(0), m, r), IOError);            // its own next: leaves another vertex
   EXPECT_THROW(load_import(with_next(-1), m, r), IOError);
+}
+
+// Where two fans meet at a vertex, a border halfedge reaching it could be given the other fan's way out: every
+// other check still holds, and only the permutation check sees that one way out is now nobody's next.
+TEST(ImportArchive, RefusesTwoHalfedgesWithTheSameNext) {
+  SkinnedMesh a;
+  request_skinned_attributes(a);
+  const auto h_inf = add_skin(a);
+  const auto c = a.add_vertex({0, 0, 0});
+  const auto a0 = a.add_vertex({1, 0, 0}), a1 = a.add_vertex({1, 1, 0});
+  const auto b0 = a.add_vertex({-1, 0, 0}), b1 = a.add_vertex({-1, -1, 0});
+  for (auto vh : a.vertices()) a.property(h_inf, vh) = Influences::rigid(0);
+  ASSERT_TRUE(a.add_face(c, a0, a1).is_valid() && a.add_face(c, b0, b1).is_valid());
+  clear_corner_attributes(a);
+  std::vector<int32_t> into_c;  // the border halfedges reaching the centre, one per fan
+  for (auto heh : a.halfedges())
+    if (a.is_boundary(heh) && a.to_vertex_handle(heh) == c) into_c.push_back(heh.idx());
+  ASSERT_EQ(into_c.size(), 2u);
+  const std::string good = save_import(a, ImportReport{});
+  const size_t nv = a.n_vertices(), nh = a.n_halfedges();
+  const size_t next_at = 8 + (8 + 24 * nv) + (8 + 4 * nv) + (8 + 4 * nh) + 8;
+  int32_t sent = -1;
+  std::memcpy(&sent, &good[next_at + 4 * size_t(into_c[0])], 4);
+  ASSERT_EQ(sent, a.next_halfedge_handle(SkinnedMesh::HalfedgeHandle(into_c[0])).idx()) << "layout out of date";
+  std::string bad = good;
+  const int32_t other_way_out = a.next_halfedge_handle(SkinnedMesh::HalfedgeHandle(into_c[1])).idx();
+  std::memcpy(&bad[next_at + 4 * size_t(into_c[0])], &other_way_out, 4);
+  SkinnedMesh m;
+  ImportReport r;
+  EXPECT_NO_THROW(load_import(good, m, r));
+  EXPECT_THROW(load_import(bad, m, r), IOError);
 }
