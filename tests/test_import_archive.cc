@@ -15,6 +15,14 @@ using namespace OpenMeshSkinned;
 
 namespace {
 std::string model(const std::string& rel) { return std::string(OMSK_TEST_MODELS) + "/" + rel; }
+
+// Where the halfedges' next handles start in \p mesh's archive. The layout: magic and version, then each array
+// as a 64-bit length and its elements: points (3 doubles per vertex), the vertices' halfedges, the halfedges'
+// vertices, then their next halfedges.
+size_t next_offset(const SkinnedMesh& mesh) {
+  const size_t nv = mesh.n_vertices(), nh = mesh.n_halfedges();
+  return 8 + (8 + 24 * nv) + (8 + 4 * nv) + (8 + 4 * nh) + 8;
+}
 }  // namespace
 
 class ArchiveRoundTrip : public ::testing::TestWithParam<std::string> {};
@@ -86,10 +94,7 @@ TEST(ImportArchive, RefusesConnectivityThatDoesNotFit) {
   SkinnedMesh a;
   import_skinned(model("X/Testwuson.X"), a);
   const std::string good = save_import(a, ImportReport{});
-  // The layout: magic and version, then each array as a 64-bit length and its elements: points (3 doubles per
-  // vertex), the vertices' halfedges, the halfedges' vertices, then their next halfedges.
-  const size_t nv = a.n_vertices(), nh = a.n_halfedges();
-  const size_t next_at = 8 + (8 + 24 * nv) + (8 + 4 * nv) + (8 + 4 * nh) + 8;
+  const size_t nh = a.n_halfedges(), next_at = next_offset(a);
   auto with_next = [&](int32_t next_of_first) {
     std::string bytes = good;
     std::memcpy(&bytes[next_at], &next_of_first, 4);
@@ -125,8 +130,7 @@ TEST(ImportArchive, RefusesTwoHalfedgesWithTheSameNext) {
     if (a.is_boundary(heh) && a.to_vertex_handle(heh) == c) into_c.push_back(heh.idx());
   ASSERT_EQ(into_c.size(), 2u);
   const std::string good = save_import(a, ImportReport{});
-  const size_t nv = a.n_vertices(), nh = a.n_halfedges();
-  const size_t next_at = 8 + (8 + 24 * nv) + (8 + 4 * nv) + (8 + 4 * nh) + 8;
+  const size_t next_at = next_offset(a);
   int32_t sent = -1;
   std::memcpy(&sent, &good[next_at + 4 * size_t(into_c[0])], 4);
   ASSERT_EQ(sent, a.next_halfedge_handle(SkinnedMesh::HalfedgeHandle(into_c[0])).idx()) << "layout out of date";

@@ -55,10 +55,8 @@ void fill_on_threads(ThreadTable<T>& table, size_t n, const T& value, int thread
   ThreadTable<T>().swap(table);
   table.resize(n);
   T* data = table.data();
-  run_on_threads(threads, [&](int t) {
-    const size_t k = static_cast<size_t>(std::max(threads, 1));
-    std::fill(data + n * t / k, data + n * (t + 1) / k, value);
-  });
+  const size_t k = static_cast<size_t>(std::max(threads, 1));
+  run_on_threads(threads, [&](int t) { std::fill(data + n * t / k, data + n * (t + 1) / k, value); });
 }
 
 }  // namespace OpenMeshSkinned
