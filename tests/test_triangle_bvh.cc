@@ -5,6 +5,7 @@
 #include <OpenMeshSkinned/Skin/SkinProperties.hh>
 
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <climits>
@@ -110,6 +111,81 @@ TEST(TriangleBvh, OnTheSurfaceAndFarFromTheOriginItStillFindsWhatTryingEveryTria
       EXPECT_EQ(hinted, expected);
     }
   }
+}
+
+// A sheet folded by a hair along its middle, cut into needles and slivers of every thinness: where a
+// triangle's plane says little (a near-flat fold, an in-plane neighbour) or its normal cannot be trusted
+// (a sliver), the search must still try it.
+TEST(TriangleBvh, SliversAndNearlyFlatFoldsAreStillFound) {
+  for (double offset : {0.0, 1e5}) {
+    TriangleSoup s;
+    const int columns = 40;
+    for (int i = 0; i <= columns; ++i) {
+      const double x = double(i) / columns;
+      const double crease = 1e-7 * std::abs(x - 0.5);                   // a fold of 1e-7 radians along x = 0.5
+      const double thin = std::pow(10.0, -1.0 - 12.0 * (i % 7) / 6.0);  // needles 0.1 to 1e-13 wide
+      for (double y : {0.0, thin, 1.0})
+        s.points.push_back(Eigen::Vector3d(x + offset, y - offset, crease + 0.5 * offset));
+    }
+    for (int i = 0; i < columns; ++i) {
+      const int a = 3 * i, b = 3 * (i + 1);
+      s.triangles.push_back({a, b, a + 1});
+      s.triangles.push_back({b, b + 1, a + 1});
+      s.triangles.push_back({a + 1, b + 1, a + 2});
+      s.triangles.push_back({b + 1, b + 2, a + 2});
+    }
+    const TriangleBvh bvh(s);
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<Eigen::Vector3d> qs = on_surface(s, 1000, 3);
+    for (int i = 0; i < 1000; ++i)
+      qs.push_back(Eigen::Vector3d(u(rng) + offset, 1.2 * u(rng) - 0.1 - offset,
+                                   std::pow(10.0, -9.0 * u(rng)) * (i % 2 ? 1.0 : -1.0) + 0.5 * offset));
+    expect_brute_force_answers(bvh, s, qs);
+    for (size_t i = 0; i < qs.size(); ++i) {
+      int expected = -1, hinted = -1;
+      const double d = brute_force(s, qs[i], expected);
+      EXPECT_EQ(bvh.nearest(qs[i], hinted, int(i % s.triangles.size())), d) << "offset " << offset;
+      EXPECT_EQ(hinted, expected) << "offset " << offset;
+    }
+  }
+}
+
+// A sliver turned off the axes: its corners' cross product is mostly rounding, so its plane says nothing.
+// Under each one lies a wider triangle a hair away, searched first (the hint), which a wrong plane would
+// keep in place of the sliver the query is on.
+TEST(TriangleBvh, ATurnedSliverIsTriedThoughItsCrossProductIsRounding) {
+  const Eigen::Matrix3d turn =
+      (Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()) * Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()))
+          .toRotationMatrix();
+  const Eigen::Vector3d u = turn.col(0), v = turn.col(1), n = turn.col(2);
+  TriangleSoup s;
+  std::vector<int> under;  // the wider triangle beneath each sliver
+  for (int k = 0; k < 10; ++k) {
+    const double width = std::pow(10.0, -6.0 - k);  // 1e-6 to 1e-15 across a length of 1
+    const Eigen::Vector3d c = 2.0 * k * v;
+    const int base = int(s.points.size());
+    for (const Eigen::Vector3d& p : {c, Eigen::Vector3d(c + u), Eigen::Vector3d(c + 0.5 * u + width * v)})
+      s.points.push_back(p);
+    for (const Eigen::Vector3d& p : {c, Eigen::Vector3d(c + u), Eigen::Vector3d(c + 0.5 * u + 0.3 * v)})
+      s.points.push_back(p - 1e-3 * n);
+    s.triangles.push_back({base, base + 1, base + 2});
+    under.push_back(int(s.triangles.size()));
+    s.triangles.push_back({base + 3, base + 4, base + 5});
+  }
+  const TriangleBvh bvh(s);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  for (int k = 0; k < 10; ++k)
+    for (int i = 0; i < 50; ++i) {
+      const auto& t = s.triangles[2 * k];
+      const double a = uniform(rng), b = (1.0 - a) * uniform(rng);
+      const Eigen::Vector3d q = a * s.points[t[0]] + b * s.points[t[1]] + (1.0 - a - b) * s.points[t[2]];
+      int expected = -1, found = -1;
+      const double d = brute_force(s, q, expected);
+      EXPECT_EQ(bvh.nearest(q, found, under[k]), d) << "sliver " << k;
+      EXPECT_EQ(found, expected) << "sliver " << k;
+    }
 }
 
 TEST(TriangleBvh, AHintChangesNothingButTheSearch) {

@@ -2,6 +2,8 @@
 
 #include "OpenMeshSkinned/Mesh/ClosestPoint.hh"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <climits>
 #include <cmath>
@@ -16,6 +18,10 @@ constexpr int kLeaf = 4;
 // the answer must be the least (distance, index) over every triangle, whatever the order of the search.
 constexpr double kSlack = 1e-9;
 constexpr double kMarginUlps = 16.0;
+// The plane test's allowance for a unit normal kept in floats (each component within half a float ulp).
+constexpr double kNormalUlps = 4.0;
+// The least sine of a corner angle whose normal is trusted (its direction then holds to far below a float ulp).
+constexpr double kMinSine = 1e-6;
 
 // A triangle while the hierarchy is split: its box centre, in floats (the split only orders them; the
 // boxes searched are computed from the triangles afterwards), and its index.
@@ -102,8 +108,15 @@ TriangleBvh::TriangleBvh(const TriangleSoup& soup) {
 void TriangleBvh::refit(const std::vector<Eigen::Vector3d>& points) {
   if (!slots_.empty() && size_t(max_index_) >= points.size())
     throw std::out_of_range("TriangleBvh::refit: fewer points than the triangles use");
-  for (Slot& s : slots_)
+  for (Slot& s : slots_) {
     for (int c = 0; c < 3; ++c) s.corner[c] = points[triangles_[s.id][c]];
+    // A sliver's cross product loses its direction to cancellation: it gets no plane test.
+    const Eigen::Vector3d e0 = s.corner[1] - s.corner[0], e1 = s.corner[2] - s.corner[0];
+    const Eigen::Vector3d n = e0.cross(e1);
+    const double len = n.norm();
+    const bool well_shaped = std::isfinite(len) && len > kMinSine * e0.norm() * e1.norm();
+    for (int k = 0; k < 3; ++k) s.normal[k] = well_shaped ? float(n[k] / len) : 0.0f;
+  }
   // Children come after their parent: from the last node back, every child's box is ready before its parent's.
   for (size_t i = nodes_.size(); i-- > 0;) {
     Node& nd = nodes_[i];
@@ -166,6 +179,16 @@ void TriangleBvh::consider(int s, const Eigen::Vector3d& q, double& best, int& b
         d += above * above;
     }
     if (d * (1.0 - kSlack) > best) return;
+    // Then its plane, which is never farther than the triangle: of the triangles whose boxes reach the
+    // query, most lie beside the nearest one on a curved surface, off its plane. The margin covers the
+    // normal's rounding to float (relative to the offset) and the corner's to double (relative to the
+    // coordinates), so that the test never passes over the triangle the full search would take.
+    const Eigen::Vector3d off = q - t.corner[0];
+    const double plane = std::abs(t.normal[0] * off[0] + t.normal[1] * off[1] + t.normal[2] * off[2]);
+    const double slack = kNormalUlps * std::numeric_limits<float>::epsilon() * off.cwiseAbs().sum() + margin +
+                         kMarginUlps * std::numeric_limits<double>::epsilon() * q.cwiseAbs().maxCoeff();
+    const double below = plane - slack;
+    if (below > 0.0 && below * below * (1.0 - kSlack) > best) return;
   }
   Eigen::Vector3d bary;
   const double d = closest_barycentric(t.corner, q, bary);

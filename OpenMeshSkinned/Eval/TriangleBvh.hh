@@ -53,7 +53,8 @@ private:
   };
   struct Slot {
     Eigen::Vector3d corner[3];
-    int id;  // the triangle's index in the soup
+    float normal[3];  // unit, or zero for a degenerate triangle: a lower bound on the distance, in float
+    int id;           // the triangle's index in the soup
   };
   double box_distance2(const Node& n, const Eigen::Vector3d& q) const;
   // Considers slot \p s for \p q: takes it when it is nearer (ties: the lower index).
