@@ -13,7 +13,9 @@
 # gltfpack runs with -si R -sv -sp -se 1 -noq and ours is asked for gltfpack's achieved count with --faces.
 # --images keeps one PNG per character, ratio and frame (rows: the directions; columns: original | gltfpack |
 # ours). --size: pixels per side of a view (384); --frames: held-out frames used, evenly thinned (4).
-# OMSK_PEER_ONLY keeps the characters named (e.g. "faerie sydney"); OMSK_PEER_EXTRA adds arguments to ours. Needs scripts/build and scripts/setup.
+# OMSK_PEER_ONLY keeps the characters named (e.g. "faerie sydney"); OMSK_PEER_EXTRA adds arguments to ours;
+# OMSK_JUDGE_FRAMES_FROM (e.g. "--poses 8") takes the held-out frames from a run of ours with those arguments
+# instead of from ours itself. Needs scripts/build and scripts/setup.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 judge_args=()
@@ -61,6 +63,12 @@ for in in "${inputs[@]}"; do
     fi
     "$cli" "$in" -o "$ours" --faces "$n" --quiet --no-eval --report "$report" ${OMSK_PEER_EXTRA:-} >"$work/ours.log" 2>&1 ||
       { echo "image-judge: skinned-decimate failed on $in:" >&2; cat "$work/ours.log" >&2; exit 1; }
+    if [ -n "${OMSK_JUDGE_FRAMES_FROM:-}" ]; then
+      # The held-out frames of another run (e.g. "--poses 8"), so that two settings are judged on the same frames.
+      report="$work/$name-$r-frames.json"
+      "$cli" "$in" -o "$work/frames.glb" --faces "$n" --quiet --no-eval --report "$report" $OMSK_JUDGE_FRAMES_FROM \
+        >"$work/frames.log" 2>&1 || { echo "image-judge: skinned-decimate failed on $in:" >&2; cat "$work/frames.log" >&2; exit 1; }
+    fi
     printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$name" "$in" "$r" "$n" "$gp" "$ours" "$report" >>"$jobs"
   done
 done

@@ -74,7 +74,7 @@ TEST(Cli, BadInputGivesOneLineErrorNonZeroExitAndNoFiles) {
       wuson + " -o a.glb --ratio 1.5",
       wuson + " -o a.glb --faces 999999",
       wuson + " -o a.glb --max-influences 0",
-      wuson + " -o a.glb --poses 0",
+      wuson + " -o a.glb --poses -1",
       wuson + " -o a.glb --pose-clip NoSuchClip",
       wuson + " -o a.glb --lods 0.5,2",
       wuson + " -o a.obj",

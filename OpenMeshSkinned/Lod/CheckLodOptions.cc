@@ -1,6 +1,7 @@
 #include "CheckLodOptions.hh"
 
 #include "LodMethods.hh"
+#include "LodPoseCount.hh"
 #include "LodPoses.hh"
 
 #include <OpenMeshSkinned/Skin/FrameAnimation.hh>
@@ -24,8 +25,8 @@ void check_lod_options(const LodOptions& o) {
     if (f == 0) throw LodOptionsError("--faces must be at least 1");
   if (o.max_influences < 1 || o.max_influences > Influences::kCapacity)
     throw LodOptionsError("--max-influences must be 1 to " + std::to_string(Influences::kCapacity));
-  if (o.poses < 1 || o.poses > kMaxLodPoses)
-    throw LodOptionsError("--poses must be 1 to " + std::to_string(kMaxLodPoses));
+  if (o.poses < 0 || o.poses > kMaxLodPoses)
+    throw LodOptionsError("--poses must be 1 to " + std::to_string(kMaxLodPoses) + ", or 0 to leave it to the mesh");
   const auto& selections = pose_selections();
   if (std::find(selections.begin(), selections.end(), o.pose_select) == selections.end())
     throw LodOptionsError("--pose-select must be " + pose_selection_names() + ", got \"" + o.pose_select + "\"");
@@ -50,10 +51,11 @@ void check_lod_options(const LodOptions& o, const SkinnedMesh& mesh, const std::
       throw LodOptionsError("--faces " + std::to_string(f) + " is more than the input's " +
                             std::to_string(mesh.n_faces()) + " triangles");
   lod_pose_clip(o, mesh, name);
-  const size_t poses = 2 * size_t(o.poses) + 2;  // examples + bind, held-out frames in between
+  const int k = lod_pose_count(o, mesh);
+  const size_t poses = 2 * size_t(k) + 2;  // examples + bind, held-out frames in between
   const size_t need_mb = (poses * mesh.n_vertices() * kBytesPerVertexPose >> 20) + 1;
   if (o.max_memory_mb > 0 && need_mb > o.max_memory_mb)
-    throw LodOptionsError("--poses " + std::to_string(o.poses) + ": needs about " + std::to_string(need_mb) +
+    throw LodOptionsError("--poses " + std::to_string(k) + ": needs about " + std::to_string(need_mb) +
                           " MB for this mesh (" + std::to_string(mesh.n_vertices()) + " vertices), over --max-memory " +
                           std::to_string(o.max_memory_mb) + " MB");
   const size_t stored = frame_times(mesh).size();

@@ -25,9 +25,11 @@ struct LodOptions {
   /// One LOD per triangle count (made largest first; empty: \a ratios).
   std::vector<size_t> faces;
   int max_influences = 4;  ///< bones per vertex at every level, 1..Influences::kCapacity
-  int poses = 8;           ///< example poses: at the times pose_select chooses, plus the bind pose
-  std::string pose_clip;   ///< the clip (name or index) the example poses come from; empty: all, end to end
-  bool bind_pose = true;   ///< the bind pose among the example poses
+  /// Example poses: at the times pose_select chooses, plus the bind pose; 0: as many as lod_pose_count()
+  /// chooses for the mesh.
+  int poses = 0;
+  std::string pose_clip;  ///< the clip (name or index) the example poses come from; empty: all, end to end
+  bool bind_pose = true;  ///< the bind pose among the example poses
   /// How the example poses are chosen: "even" (evenly spaced times), or among the frames not held out: "motion"
   /// (evenly spaced over the motion: select_poses_by_motion), "spread" (farthest first: select_poses_spread) or
   /// "ga" (the key-frame GA).

@@ -1,5 +1,7 @@
 #include "LodPoses.hh"
 
+#include "LodPoseCount.hh"
+
 #include <OpenMeshSkinned/Deform/PoseSelection.hh>
 #include <OpenMeshSkinned/IO/IOError.hh>
 #include <OpenMeshSkinned/Skin/FrameAnimation.hh>
@@ -64,7 +66,8 @@ LodPoses select_lod_poses(const SkinnedMesh& mesh, const LodOptions& opt, const 
   // A frame animation learns from, and is judged on, stored frames, never the blend of two; with few of
   // them, half are kept back to judge on.
   const size_t stored = frame_times(mesh).size();
-  const int k = stored > 0 ? std::min<int>(opt.poses, int((stored + 1) / 2)) : opt.poses;
+  const int wanted = lod_pose_count(opt, mesh);
+  const int k = stored > 0 ? std::min<int>(wanted, int((stored + 1) / 2)) : wanted;
   const int clip = lod_pose_clip(opt, mesh, name);
   p.schedule = make_pose_schedule(all, k, clip);
   snap_to_frames(p.schedule, frame_times(mesh));

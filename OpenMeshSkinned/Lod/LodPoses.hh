@@ -10,7 +10,7 @@
 
 namespace OpenMeshSkinned {
 
-/** options.poses example times over the clips (or options.pose_clip), the bind pose unless
+/** lod_pose_count(options, mesh) example times over the clips (or options.pose_clip), the bind pose unless
  *  !options.bind_pose, and the frames in between them held out; a frame animation's stored frames only (with
  *  few of them, half kept back). A mesh without clips is decimated and judged in its rest pose (a warning
  *  when \p poses_given). Says which in a message; throws IOError when a pose does not compose to finite

@@ -2,6 +2,7 @@
 
 #include <OpenMeshSkinned/Lod/LodMethods.hh>
 #include <OpenMeshSkinned/Lod/LodOptions.hh>
+#include <OpenMeshSkinned/Lod/LodPoseCount.hh>
 #include <OpenMeshSkinned/Lod/LodPoses.hh>
 
 #include <algorithm>
@@ -37,7 +38,8 @@ void declare_run_options(CLI::App& app, Options& opt, OptionWords& c) {
   app.add_option("--max-influences", opt.max_influences, "Bone influences per vertex at most (1-8, default 4)");
   app.add_option("--poses", opt.poses,
                  "Example poses: K evenly spaced times over the clip, both ends included, plus the bind pose (1-" +
-                     std::to_string(OpenMeshSkinned::kMaxLodPoses) + ", default 8)");
+                     std::to_string(OpenMeshSkinned::kMaxLodPoses) +
+                     "; default 0: " + OpenMeshSkinned::lod_pose_count_rule() + ")");
   app.add_option("--pose-clip", opt.pose_clip,
                  "Clip (name or index) for the example poses; default: all clips end to end");
   app.add_option("--method", opt.method, method_help());

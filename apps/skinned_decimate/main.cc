@@ -6,6 +6,7 @@
 
 #include <OpenMeshSkinned/IO/PrintableText.hh>
 #include <OpenMeshSkinned/Lod/LodOptions.hh>
+#include <OpenMeshSkinned/Lod/LodPoseCount.hh>
 #include <OpenMeshSkinned/Platform/HugePages.hh>
 
 #include <CLI/CLI.hpp>
@@ -45,7 +46,8 @@ int main(int argc, char** argv) {
     std::cerr << "skinned-decimate: " << OpenMeshSkinned::printable_line(e.what(), 1000) << "\n";
     return 2;
   } catch (const std::bad_alloc&) {
-    std::cerr << "skinned-decimate: out of memory while " << current_stage() << ": try fewer --poses (now " << opt.poses
+    std::cerr << "skinned-decimate: out of memory while " << current_stage() << ": try fewer --poses (now "
+              << (opt.poses > 0 ? std::to_string(opt.poses) : "the default: " + OpenMeshSkinned::lod_pose_count_rule())
               << ") or --threads, or set --max-memory MB to be stopped before it runs out\n";
     return 1;
   } catch (const std::exception& e) {

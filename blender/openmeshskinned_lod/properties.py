@@ -46,10 +46,11 @@ class OMSK_LodSettings(bpy.types.PropertyGroup):
     )
     poses: IntProperty(
         name="Example poses",
-        default=8,
-        min=1,
+        default=0,
+        min=0,
         max=256,
-        description="Evenly spaced times of the action(s) the decimation learns from (--poses)",
+        description="Evenly spaced times of the action(s) the decimation learns from (--poses); 0: 8 per action, "
+        "at most 16, on a character of up to 20,000 vertices; else 8",
     )
     pose_action: StringProperty(
         name="From action",

@@ -2,6 +2,8 @@
 // default_options() and the docstring all follow the C++ struct and its defaults.
 #include "options.hh"
 
+#include <OpenMeshSkinned/Lod/LodPoseCount.hh>
+
 #include <pybind11/stl.h>
 
 #include <algorithm>
@@ -28,6 +30,13 @@ Field field(const char* name, const char* type, const char* help, T LodOptions::
           [member](const LodOptions& o) { return py::cast(o.*member); }};
 }
 
+const std::string& poses_help() {
+  using namespace OpenMeshSkinned;
+  static const std::string s =
+      "example poses: evenly spaced times over the clips (plus the bind pose); 0: " + lod_pose_count_rule();
+  return s;
+}
+
 const std::vector<Field>& fields() {
   static const std::vector<Field> all = {
       field("method", "str", "the priority module (lod_methods()); '': skinned, or frames for a frame animation",
@@ -35,8 +44,7 @@ const std::vector<Field>& fields() {
       field("ratios", "list of float", "one LOD per ratio of the input's triangles, in (0, 1]", &LodOptions::ratios),
       field("faces", "list of int >= 0", "one LOD per triangle count instead of ratios", &LodOptions::faces),
       field("max_influences", "int", "bones per vertex at every level, 1..8", &LodOptions::max_influences),
-      field("poses", "int", "example poses: evenly spaced times over the clips (plus the bind pose)",
-            &LodOptions::poses),
+      field("poses", "int >= 0", poses_help().c_str(), &LodOptions::poses),
       {"pose_clip", "str or int", "the clip (name or index) the example poses come from; '': all, end to end",
        [](LodOptions& o, py::handle v) {
          o.pose_clip = py::isinstance<py::int_>(v) ? std::to_string(v.cast<long long>()) : v.cast<std::string>();

@@ -115,7 +115,7 @@ def test_save_refuses_its_input_and_a_bad_extension_with_nothing_written(wuson_l
         (["--max-influences", "9"], {"max_influences": 9}),
         (["--lods", "1.5"], {"ratios": [1.5]}),
         (["--faces", "100000000"], {"faces": [100000000]}),
-        (["--poses", "0"], {"poses": 0}),
+        (["--poses", "-1"], {"poses": -1}),
         (["--pose-clip", "nope"], {"pose_clip": "nope"}),
     ],
 )
@@ -140,7 +140,7 @@ def test_unknown_or_mistyped_keywords_are_type_errors(wuson):
 
 def test_every_keyword_has_the_c_plus_plus_default_in_the_docstring():
     defaults = oms.default_options()
-    assert defaults["ratios"] == [0.5] and defaults["max_influences"] == 4 and defaults["poses"] == 8
+    assert defaults["ratios"] == [0.5] and defaults["max_influences"] == 4 and defaults["poses"] == 0
     for name, value in defaults.items():
         assert f"    {name} (" in oms.make_lods.__doc__ and f"default {value!r})" in oms.make_lods.__doc__
     assert "skinned" in oms.lod_methods()
