@@ -14,7 +14,7 @@ constexpr int kAutoLodPoses = 0;
 constexpr int kLodPosesPerClip = 8;
 /// The most lod_pose_count() chooses.
 constexpr int kMaxAutoLodPoses = 16;
-/// Up to this many vertices a mesh gets kLodPosesPerClip for each of its clips; above, kLodPosesPerClip.
+/// Up to this many vertices a mesh gets kLodPosesPerClip for each of its clips; above, kLodPosesPerClip in all.
 constexpr size_t kSmallMeshVertices = 20000;
 
 /** options.poses when it is set (not kAutoLodPoses). Otherwise, for a mesh of at most kSmallMeshVertices
