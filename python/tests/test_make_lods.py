@@ -85,6 +85,15 @@ def test_poses_spread_over_the_motion_are_the_command_line_s(wuson, tmp_path):
         oms.make_lods(wuson, pose_select="best")
 
 
+def test_the_default_pose_count_follows_the_clips(wuson):
+    # Testwuson is small and two of its clips move (the run and the walk): 8 poses each; one clip chosen: 8.
+    assert len(oms.make_lods(wuson, ratios=[0.5], evaluate=False).example_frames) == 16
+    walk = oms.make_lods(wuson, ratios=[0.5], evaluate=False, pose_clip="Wuson_Walk").example_frames
+    assert len(walk) == 8 and all(clip == "Wuson_Walk" for clip, _ in walk)
+    assert len(oms.make_lods(wuson, ratios=[0.5], evaluate=False, poses=5).example_frames) == 5
+    assert "8 per clip that moves joints, at most 16" in oms.make_lods.__doc__
+
+
 def test_a_chain_is_saved_as_numbered_files_and_a_mesh_as_one(wuson_lods, tmp_path):
     paths = oms.save(wuson_lods, tmp_path / "hero.glb")
     assert paths == [str(tmp_path / "hero_lod1.glb"), str(tmp_path / "hero_lod2.glb")]
