@@ -45,11 +45,11 @@ class OMSK_LodSettings(bpy.types.PropertyGroup):
         name="Max influences", default=4, min=1, max=8, description="Bones per vertex at every LOD (--max-influences)"
     )
     poses: IntProperty(
-        name="Example poses",
+        name="Example poses (0: auto)",
         default=0,
         min=0,
         max=256,
-        description="Evenly spaced times of the action(s) the decimation learns from (--poses); 0: 8 per action, "
+        description="Evenly spaced times of the action(s) the decimation learns from (--poses); 0: 8 per moving action, "
         "at most 16, on a character of up to 20,000 vertices; else 8",
     )
     pose_action: StringProperty(
