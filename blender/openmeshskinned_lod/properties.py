@@ -49,8 +49,8 @@ class OMSK_LodSettings(bpy.types.PropertyGroup):
         default=0,
         min=0,
         max=256,
-        description="Evenly spaced times of the action(s) the decimation learns from (--poses); 0: 8 per moving action, "
-        "at most 16, on a character of up to 20,000 vertices; else 8",
+        description="Evenly spaced times of the action(s) the decimation learns from (--poses); 0: 8 per moving "
+        "action, at most 16, on a character of up to 20,000 vertices; else 8",
     )
     pose_action: StringProperty(
         name="From action",
