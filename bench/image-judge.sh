@@ -63,13 +63,16 @@ for in in "${inputs[@]}"; do
     fi
     "$cli" "$in" -o "$ours" --faces "$n" --quiet --no-eval --report "$report" ${OMSK_PEER_EXTRA:-} >"$work/ours.log" 2>&1 ||
       { echo "image-judge: skinned-decimate failed on $in:" >&2; cat "$work/ours.log" >&2; exit 1; }
+    frames=""
     if [ -n "${OMSK_JUDGE_FRAMES_FROM:-}" ]; then
       # The held-out frames of another run (e.g. "--poses 8"), so that two settings are judged on the same frames.
-      report="$work/$name-$r-frames.json"
-      "$cli" "$in" -o "$work/frames.glb" --faces "$n" --quiet --no-eval --report "$report" $OMSK_JUDGE_FRAMES_FROM \
-        >"$work/frames.log" 2>&1 || { echo "image-judge: skinned-decimate failed on $in:" >&2; cat "$work/frames.log" >&2; exit 1; }
+      # They depend on the poses only, so that run makes no collapse and no fit.
+      frames="$work/$name-$r-frames.json"
+      "$cli" "$in" -o "$work/frames.glb" --ratio 1 --no-refit --quiet --no-eval --report "$frames" \
+        $OMSK_JUDGE_FRAMES_FROM >"$work/frames.log" 2>&1 ||
+        { echo "image-judge: skinned-decimate failed on $in:" >&2; cat "$work/frames.log" >&2; exit 1; }
     fi
-    printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$name" "$in" "$r" "$n" "$gp" "$ours" "$report" >>"$jobs"
+    printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$name" "$in" "$r" "$n" "$gp" "$ours" "$report" "$frames" >>"$jobs"
   done
 done
 node bench/image-judge/judge.mjs "$jobs" "${judge_args[@]}"

@@ -18,7 +18,7 @@ struct Options {
   size_t faces = 0;
   std::vector<double> lods;  // sorted, largest first
   int max_influences = 4;
-  int poses = 0;  // 0: lod_pose_count() chooses
+  int poses = OpenMeshSkinned::LodOptions().poses;  // 0: lod_pose_count() chooses
   bool quiet = false;
   bool verbose = false;  // --verbose: the isolated reader's own output too
   bool poses_given = false;

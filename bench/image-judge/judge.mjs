@@ -3,7 +3,8 @@
 // character and ratio, and writes JSON lines and side-by-side PNGs when asked.
 //   node bench/image-judge/judge.mjs JOBS.tsv [--size PX] [--frames K] [--jsonl FILE] [--images DIR]
 // JOBS.tsv: character, original, ratio, gltfpack's triangles (0: it kept none), gltfpack's LOD, ours, our
-// --report JSON; tab-separated, one line per character and ratio.
+// --report JSON and, optionally, the --report JSON whose held-out frames to render in instead; tab-separated, one
+// line per character and ratio.
 import { createRequire } from 'node:module';
 import { existsSync, mkdirSync, readFileSync, writeFileSync, renameSync } from 'node:fs';
 import { dirname, extname, join, resolve } from 'node:path';
@@ -44,9 +45,9 @@ function readJobs(path) {
   const characters = new Map();
   for (const line of readFileSync(path, 'utf8').split('\n')) {
     if (!line.trim()) continue;
-    const [name, original, ratio, triangles, gp, ours, report] = line.split('\t');
+    const [name, original, ratio, triangles, gp, ours, report, frames] = line.split('\t');
     if (!characters.has(name)) characters.set(name, { name, original, levels: [] });
-    characters.get(name).levels.push({ ratio, gpTriangles: Number(triangles), gp, ours, report });
+    characters.get(name).levels.push({ ratio, gpTriangles: Number(triangles), gp, ours, report, frames });
   }
   return [...characters.values()];
 }
@@ -97,7 +98,8 @@ async function judgeCharacter(page, c, o, out) {
   }
   const reports = levels.map((l) => JSON.parse(readFileSync(l.report, 'utf8')));
   levels.forEach((l, i) => { l.oursTriangles = reports[i].lods[0].faces; });
-  const held = thin(reports[0].lods[0].heldout_times ?? [], o.frames);
+  const framesReport = levels[0].frames ? JSON.parse(readFileSync(levels[0].frames, 'utf8')) : reports[0];
+  const held = thin(framesReport.lods[0].heldout_times ?? [], o.frames);
   const job = {
     original: url(c.original), size: o.size, directions: DIRECTIONS, frames: held,
     lods: levels.flatMap((l) => [{ key: `gp ${l.ratio}`, url: url(l.gp) }, { key: `ours ${l.ratio}`, url: url(l.ours) }]),
