@@ -1,0 +1,294 @@
+#include "OpenMeshSkinned/Solver/EdgeFlipFit.hh"
+
+#include "OpenMeshSkinned/Eval/SurfaceDistance.hh"
+#include "OpenMeshSkinned/Mesh/ClosestPoint.hh"
+#include "OpenMeshSkinned/Mesh/CornerAttributes.hh"
+#include "OpenMeshSkinned/Mesh/Seams.hh"
+#include "OpenMeshSkinned/Skin/LinearBlendSkinning.hh"
+#include "OpenMeshSkinned/Solver/Threads.hh"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <memory>
+#include <numeric>
+
+namespace OpenMeshSkinned {
+
+namespace {
+
+using HH = SkinnedMesh::HalfedgeHandle;
+
+// An edge ab that may flip: its faces abc (f1) and bad (f2); flipped, adc and dbc.
+struct Quad {
+  SkinnedMesh::EdgeHandle edge;
+  int f1, f2;
+  int a, b, c, d;
+};
+
+// Where a face is sampled: the centroid and three points toward the corners (the corners themselves do
+// not move with a flip).
+constexpr double kBary[4][3] = {
+    {1.0 / 3, 1.0 / 3, 1.0 / 3}, {2.0 / 3, 1.0 / 6, 1.0 / 6}, {1.0 / 6, 2.0 / 3, 1.0 / 6}, {1.0 / 6, 1.0 / 6, 2.0 / 3}};
+
+bool same_corner(const SkinnedMesh& mesh, const std::vector<CornerChannel>& channels, HH x, HH y) {
+  constexpr double tol2 = kSeamUvTolerance * kSeamUvTolerance;
+  if (mesh.has_halfedge_texcoords2D() && double((mesh.texcoord2D(x) - mesh.texcoord2D(y)).sqrnorm()) > tol2)
+    return false;
+  // The exporter recomputes normals from the faces (ExportCorners.hh): stored ones only say which corners
+  // are smoothed together, so corners within kHardEdgeNormalCos of each other are one.
+  if (mesh.has_halfedge_normals()) {
+    const auto nx = mesh.normal(x), ny = mesh.normal(y);
+    const double l = double(nx.norm()) * ny.norm();
+    if (l > 0.0 && double(nx | ny) < kHardEdgeNormalCos * l) return false;
+  }
+  for (const CornerChannel& ch : channels)
+    if (double((mesh.property(ch.handle, x) - mesh.property(ch.handle, y)).sqrnorm()) > tol2) return false;
+  return true;
+}
+
+// The edges that may flip as far as the mesh's connectivity and attributes go.
+// \p near: only edges with a vertex flagged there (empty: all).
+std::vector<Quad> flippable(const SkinnedMesh& mesh, const std::vector<char>& near) {
+  OpenMesh::FPropHandleT<int> h_mat;
+  const bool has_mat = mesh.get_property_handle(h_mat, prop_names::kFaceMaterial);
+  const std::vector<CornerChannel> channels = corner_channels(mesh);
+  std::vector<Quad> out;
+  for (auto eh : mesh.edges()) {
+    if (mesh.is_boundary(eh) || !mesh.is_flip_ok(eh)) continue;
+    const HH h0 = mesh.halfedge_handle(eh, 0), h1 = mesh.halfedge_handle(eh, 1);
+    const HH n1 = mesh.next_halfedge_handle(h0), p1 = mesh.next_halfedge_handle(n1);
+    const HH n2 = mesh.next_halfedge_handle(h1), p2 = mesh.next_halfedge_handle(n2);
+    const auto f1 = mesh.face_handle(h0), f2 = mesh.face_handle(h1);
+    if (has_mat && mesh.property(h_mat, f1) != mesh.property(h_mat, f2)) continue;
+    // a's corners are p1 and h1, b's h0 and p2: after the flip each keeps one of them.
+    if (!same_corner(mesh, channels, p1, h1) || !same_corner(mesh, channels, h0, p2)) continue;
+    const Quad q{eh,
+                 f1.idx(),
+                 f2.idx(),
+                 mesh.from_vertex_handle(h0).idx(),
+                 mesh.to_vertex_handle(h0).idx(),
+                 mesh.to_vertex_handle(n1).idx(),
+                 mesh.to_vertex_handle(n2).idx()};
+    if (near.empty() || near[q.a] || near[q.b] || near[q.c] || near[q.d]) out.push_back(q);
+  }
+  return out;
+}
+
+double tri_distance2(const Eigen::Vector3d& p, const Eigen::Vector3d& x, const Eigen::Vector3d& y,
+                     const Eigen::Vector3d& z) {
+  const Eigen::Vector3d t[3] = {x, y, z};
+  Eigen::Vector3d bary;
+  return closest_barycentric(t, p, bary);
+}
+
+// Area-weighted squared distance of triangle xyz's samples to \p original.
+// \p hint: the original's triangle the last query hit (the quad's samples lie close together).
+double area_term(const MeasuredSurface& original, const Eigen::Vector3d& x, const Eigen::Vector3d& y,
+                 const Eigen::Vector3d& z, int& hint) {
+  const double area = 0.5 * (y - x).cross(z - x).norm();
+  double sum = 0.0;
+  for (const auto& w : kBary) {
+    int tri = -1;
+    const double dist = original.distance(w[0] * x + w[1] * y + w[2] * z, tri, hint);
+    if (tri >= 0) hint = tri;
+    sum += dist * dist;
+  }
+  return area * sum / 4.0;
+}
+
+// One pose's errors of every quad as it is and flipped, and whether the flip keeps it from folding there.
+struct PoseErrors {
+  std::vector<double> before, after;
+  std::vector<char> ok;
+};
+
+struct SweepInput {
+  const SkinnedMesh& lod;
+  const SkinnedMesh& original;
+  const std::vector<std::array<int, 3>>& triangles;  // the original's
+  const std::vector<size_t>& samples;                // vertices, then triangles offset by the vertex count
+  const std::vector<Quad>& quads;
+};
+
+void pose_errors(const SweepInput& in, const Pose& pose, std::unique_ptr<MeasuredSurface>& slot, PoseErrors& out) {
+  const SkinnedMesh& original = in.original;
+  TriangleSoup posed;
+  posed.points = skin_positions(original, pose);
+  posed.triangles = in.triangles;
+  const MeasuredSurface& surface = posed_surface(slot, posed, 0, 1);
+  double area = 0.0;
+  for (const auto& t : in.triangles)
+    area += 0.5 * (posed.points[t[1]] - posed.points[t[0]]).cross(posed.points[t[2]] - posed.points[t[0]]).norm();
+  const double w_sample = area / double(std::max<size_t>(1, in.samples.size()));
+
+  const TriangleSoup lsoup = posed_soup(in.lod, pose);
+  const MeasuredSurface lsurf(lsoup, 0, 1);
+  const std::vector<Eigen::Vector3d>& y = lsoup.points;
+  // The original's samples, by the LOD face nearest to them (the soup's triangles are the faces in order).
+  const size_t nf = in.lod.n_faces();
+  std::vector<Eigen::Vector3d> at(in.samples.size());
+  std::vector<int> face(in.samples.size(), -1);
+  std::vector<double> d2(in.samples.size(), 0.0);
+  std::vector<int> start(nf + 1, 0);
+  int previous = -1;
+  for (size_t k = 0; k < in.samples.size(); ++k) {
+    const size_t i = in.samples[k];
+    if (i < original.n_vertices()) {
+      at[k] = posed.points[i];
+    } else {
+      const auto& T = in.triangles[i - original.n_vertices()];
+      at[k] = (posed.points[T[0]] + posed.points[T[1]] + posed.points[T[2]]) / 3.0;
+    }
+    int tri = -1;
+    const double dist = lsurf.distance(at[k], tri, previous);
+    if (tri < 0) continue;
+    previous = tri;
+    face[k] = tri;
+    d2[k] = dist * dist;
+    ++start[tri + 1];
+  }
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<int> bucket(start[nf]);
+  {
+    std::vector<int> fill(start.begin(), start.end() - 1);
+    for (size_t k = 0; k < face.size(); ++k)
+      if (face[k] >= 0) bucket[fill[face[k]]++] = int(k);
+  }
+
+  // Each face's own term once: it is the "before" of all three of its edges.
+  // Each LOD vertex's nearest triangle of the original starts the searches of the samples beside it.
+  std::vector<int> near_tri(y.size(), -2);  // -2: not searched yet
+  int last_tri = -1;
+  auto hint_at = [&](int v) {
+    if (near_tri[v] == -2) {
+      surface.distance(y[v], near_tri[v], last_tri);
+      if (near_tri[v] >= 0) last_tri = near_tri[v];
+    }
+    return near_tri[v];
+  };
+  std::vector<double> face_term(nf, -1.0);  // found when first asked for
+  auto term_of = [&](int f) {
+    if (face_term[f] < 0.0) {
+      const auto& T = lsoup.triangles[f];
+      int hint = hint_at(T[0]);
+      face_term[f] = area_term(surface, y[T[0]], y[T[1]], y[T[2]], hint);
+    }
+    return face_term[f];
+  };
+  const size_t nq = in.quads.size();
+  out.before.assign(nq, 0.0);
+  out.after.assign(nq, 0.0);
+  out.ok.assign(nq, 0);
+  for (size_t q = 0; q < nq; ++q) {
+    const Quad& Q = in.quads[q];
+    const Eigen::Vector3d &a = y[Q.a], &b = y[Q.b], &c = y[Q.c], &d = y[Q.d];
+    const Eigen::Vector3d m = (b - a).cross(c - a) + (a - b).cross(d - b);
+    const Eigen::Vector3d n1 = (d - a).cross(c - a), n2 = (b - d).cross(c - d);
+    const double scale = m.squaredNorm();
+    // Neither new face degenerate, the two not folded onto each other, neither turned from the old pair.
+    const bool ok = n1.squaredNorm() > 1e-12 * scale && n2.squaredNorm() > 1e-12 * scale && n1.dot(n2) > 0.0 &&
+                    n1.dot(m) > 0.0 && n2.dot(m) > 0.0;
+    out.ok[q] = ok;
+    if (!ok) continue;
+    double before = term_of(Q.f1) + term_of(Q.f2);
+    int hint = hint_at(Q.c);
+    double after = area_term(surface, a, d, c, hint);
+    hint = hint_at(Q.c);
+    after += area_term(surface, d, b, c, hint);
+    for (const int f : {Q.f1, Q.f2})
+      for (int s = start[f]; s < start[f + 1]; ++s) {
+        const int k = bucket[s];
+        before += w_sample * d2[k];
+        after += w_sample * std::min(tri_distance2(at[k], a, d, c), tri_distance2(at[k], d, b, c));
+      }
+    out.before[q] = before;
+    out.after[q] = after;
+  }
+}
+
+// Flips \p e and gives the two halfedges it turned into the corners of the vertices they now point to.
+void flip_keeping_corners(SkinnedMesh& mesh, SkinnedMesh::EdgeHandle e, const std::vector<CornerChannel>& channels) {
+  const HH h0 = mesh.halfedge_handle(e, 0), h1 = mesh.halfedge_handle(e, 1);
+  const HH n1 = mesh.next_halfedge_handle(h0), n2 = mesh.next_halfedge_handle(h1);  // b->c and a->d
+  mesh.flip(e);
+  for (const HH h : {mesh.halfedge_handle(e, 0), mesh.halfedge_handle(e, 1)}) {
+    const HH from = mesh.to_vertex_handle(h) == mesh.to_vertex_handle(n1) ? n1 : n2;
+    if (mesh.has_halfedge_texcoords2D()) mesh.set_texcoord2D(h, mesh.texcoord2D(from));
+    if (mesh.has_halfedge_normals()) mesh.set_normal(h, mesh.normal(from));
+    for (const CornerChannel& ch : channels) mesh.property(ch.handle, h) = mesh.property(ch.handle, from);
+  }
+}
+
+}  // namespace
+
+FlipFitReport flip_edges_to_fit(SkinnedMesh& lod, const SkinnedMesh& original, const std::vector<Pose>& poses,
+                                const FlipFitSettings& settings) {
+  FlipFitReport report;
+  if (poses.empty() || lod.n_faces() < 2 || original.n_faces() == 0) return report;
+  std::vector<std::array<int, 3>> triangles;
+  for (auto fh : original.faces()) {
+    auto fv = original.cfv_iter(fh);
+    const int a = (fv++)->idx(), b = (fv++)->idx(), c = fv->idx();
+    triangles.push_back({a, b, c});
+  }
+  std::vector<size_t> samples;
+  {
+    const size_t total = original.n_vertices() + triangles.size();
+    const size_t stride =
+        std::max<size_t>(1, (total + settings.max_samples - 1) / std::max<size_t>(1, settings.max_samples));
+    for (size_t i = 0; i < total; i += stride)
+      if (i >= original.n_vertices() || !original.status(SkinnedMesh::VertexHandle(int(i))).deleted())
+        samples.push_back(i);
+  }
+  const std::vector<CornerChannel> channels = corner_channels(lod);
+  const int threads = std::max(1, std::min<int>(settings.threads, int(poses.size())));
+  std::vector<std::unique_ptr<MeasuredSurface>> slots(threads);
+  // After the first sweep, only edges near a flip can have changed their answer.
+  std::vector<char> near;
+  for (int sweep = 0; sweep < settings.sweeps; ++sweep) {
+    const std::vector<Quad> quads = flippable(lod, near);
+    if (quads.empty()) break;
+    const SweepInput in{lod, original, triangles, samples, quads};
+    std::vector<PoseErrors> per_pose(poses.size());
+    std::atomic<size_t> next{0};
+    run_on_threads(threads, [&](int t) {
+      for (size_t j = next++; j < poses.size(); j = next++) pose_errors(in, poses[j], slots[t], per_pose[j]);
+    });
+    // Summed in pose order, so that the answer does not depend on the thread count.
+    std::vector<std::pair<double, size_t>> gains;
+    std::vector<double> before(quads.size(), 0.0), after(quads.size(), 0.0);
+    for (size_t q = 0; q < quads.size(); ++q) {
+      bool ok = true;
+      for (const PoseErrors& p : per_pose) {
+        ok = ok && p.ok[q];
+        before[q] += p.before[q];
+        after[q] += p.after[q];
+      }
+      if (ok && after[q] < (1.0 - settings.min_gain) * before[q]) gains.push_back({before[q] - after[q], q});
+    }
+    std::sort(gains.begin(), gains.end(), [](const auto& x, const auto& y) {
+      return x.first != y.first ? x.first > y.first : x.second < y.second;
+    });
+    std::vector<char> touched(lod.n_faces(), 0);
+    near.assign(lod.n_vertices(), 0);
+    int flips = 0;
+    for (const auto& [gain, q] : gains) {
+      const Quad& Q = quads[q];
+      if (touched[Q.f1] || touched[Q.f2] || !lod.is_flip_ok(Q.edge)) continue;
+      touched[Q.f1] = touched[Q.f2] = 1;
+      near[Q.a] = near[Q.b] = near[Q.c] = near[Q.d] = 1;
+      flip_keeping_corners(lod, Q.edge, channels);
+      report.before += before[q];
+      report.after += after[q];
+      ++flips;
+    }
+    if (flips == 0) break;
+    report.flips += flips;
+    ++report.sweeps;
+  }
+  if (report.flips > 0 && lod.has_face_normals()) lod.update_face_normals();
+  return report;
+}
+
+}  // namespace OpenMeshSkinned

@@ -1,0 +1,41 @@
+#pragma once
+/** \file EdgeFlipFit.hh
+ *  Edge flips after decimation, judged against the original in every example pose (Hoppe et al. 1993's
+ *  edge swap, posed). A collapse sequence leaves the diagonal of many quads where the last collapse put it,
+ *  not where the surface needs it: across a curved patch the other diagonal can lie closer to the original.
+ *
+ *  An interior edge ab with faces abc and bad becomes cd when, summed over the poses, the squared distance
+ *  of the two faces' area samples to the posed original, plus that of the original's samples that lie
+ *  nearest to them to the two faces, falls. A flip is refused where it would change what the surface
+ *  shows or how it bends: across an attribute seam (the four corners must carry one value per vertex),
+ *  between materials, where cd is already an edge, onto a degenerate face, or where the two new faces fold
+ *  against each other or turn from the old ones by 90 degrees or more in some pose. Flips whose faces touch
+ *  are taken best first, one per face per sweep; sweeps repeat while they flip.
+ */
+
+#include "OpenMeshSkinned/Skin/Skeleton.hh"
+#include "OpenMeshSkinned/Skin/SkinnedMesh.hh"
+
+#include <vector>
+
+namespace OpenMeshSkinned {
+
+struct FlipFitSettings {
+  int sweeps = 3;
+  size_t max_samples = 20000;  ///< original points (vertices, then centroids) per pose at most, evenly strided
+  double min_gain = 1e-3;      ///< relative fall of the quad's error a flip must bring
+  int threads = 1;             ///< threads taking poses in turn (the answer does not depend on it)
+};
+
+struct FlipFitReport {
+  int flips = 0;                     ///< edges flipped, all sweeps
+  int sweeps = 0;                    ///< sweeps that flipped
+  double before = 0.0, after = 0.0;  ///< the flipped quads' error, summed over poses, before and after
+};
+
+/// Flips edges of \p lod (a decimation of \p original, garbage-collected) in \p poses. Vertices, skins,
+/// corner attributes and materials are kept; only which vertices the faces join changes.
+FlipFitReport flip_edges_to_fit(SkinnedMesh& lod, const SkinnedMesh& original, const std::vector<Pose>& poses,
+                                const FlipFitSettings& settings = {});
+
+}  // namespace OpenMeshSkinned
