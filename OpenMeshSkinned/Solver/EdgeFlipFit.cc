@@ -100,6 +100,7 @@ double area_term(const MeasuredSurface& original, const Eigen::Vector3d& x, cons
 // One pose's errors of every quad as it is and flipped, and whether the flip keeps it from folding there.
 struct PoseErrors {
   std::vector<double> before, after;
+  std::vector<double> area;  // the two faces' area
   std::vector<char> ok;
 };
 
@@ -180,6 +181,7 @@ void pose_errors(const SweepInput& in, const Pose& pose, std::unique_ptr<Measure
   out.before.assign(nq, 0.0);
   out.after.assign(nq, 0.0);
   out.ok.assign(nq, 0);
+  out.area.assign(nq, 0.0);
   for (size_t q = 0; q < nq; ++q) {
     const Quad& Q = in.quads[q];
     const Eigen::Vector3d &a = y[Q.a], &b = y[Q.b], &c = y[Q.c], &d = y[Q.d];
@@ -191,6 +193,7 @@ void pose_errors(const SweepInput& in, const Pose& pose, std::unique_ptr<Measure
                     n1.dot(m) > 0.0 && n2.dot(m) > 0.0;
     out.ok[q] = ok;
     if (!ok) continue;
+    out.area[q] = 0.5 * ((b - a).cross(c - a).norm() + (a - b).cross(d - b).norm());
     double before = term_of(Q.f1) + term_of(Q.f2);
     int hint = hint_at(Q.c);
     double after = area_term(surface, a, d, c, hint);
@@ -242,6 +245,7 @@ FlipFitReport flip_edges_to_fit(SkinnedMesh& lod, const SkinnedMesh& original, c
         samples.push_back(i);
   }
   const std::vector<CornerChannel> channels = corner_channels(lod);
+  const double diagonal = bbox_diagonal(original);
   const int threads = std::max(1, std::min<int>(settings.threads, int(poses.size())));
   std::vector<std::unique_ptr<MeasuredSurface>> slots(threads);
   // After the first sweep, only edges near a flip can have changed their answer.
@@ -258,14 +262,19 @@ FlipFitReport flip_edges_to_fit(SkinnedMesh& lod, const SkinnedMesh& original, c
     // Summed in pose order, so that the answer does not depend on the thread count.
     std::vector<std::pair<double, size_t>> gains;
     std::vector<double> before(quads.size(), 0.0), after(quads.size(), 0.0);
+    const double floor = settings.tolerance * diagonal * settings.tolerance * diagonal;
     for (size_t q = 0; q < quads.size(); ++q) {
       bool ok = true;
+      double area = 0.0;
       for (const PoseErrors& p : per_pose) {
         ok = ok && p.ok[q];
         before[q] += p.before[q];
         after[q] += p.after[q];
+        area += p.area[q];
       }
-      if (ok && after[q] < (1.0 - settings.min_gain) * before[q]) gains.push_back({before[q] - after[q], q});
+      // A quad that already fits gains only rounding: both diagonals lie on the surface.
+      const double gain = before[q] - after[q];
+      if (ok && gain > settings.min_gain * before[q] && gain > floor * area) gains.push_back({gain, q});
     }
     std::sort(gains.begin(), gains.end(), [](const auto& x, const auto& y) {
       return x.first != y.first ? x.first > y.first : x.second < y.second;

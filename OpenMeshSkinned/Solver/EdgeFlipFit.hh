@@ -7,10 +7,11 @@
  *  An interior edge ab with faces abc and bad becomes cd when, summed over the poses, the squared distance
  *  of the two faces' area samples to the posed original, plus that of the original's samples that lie
  *  nearest to them to the two faces, falls. A flip is refused where it would change what the surface
- *  shows or how it bends: across an attribute seam (the four corners must carry one value per vertex),
- *  between materials, where cd is already an edge, onto a degenerate face, or where the two new faces fold
- *  against each other or turn from the old ones by 90 degrees or more in some pose. Flips whose faces touch
- *  are taken best first, one per face per sweep; sweeps repeat while they flip.
+ *  shows or how it bends: across an attribute seam (at a and at b both faces' corners must carry the same UVs
+ *  and colours, and normals no hard edge apart, Seams.hh), between materials, where cd is already an edge,
+ *  onto a degenerate face, or where the two new faces fold against each other or turn from the old ones by
+ *  90 degrees or more in some pose. Flips whose faces touch are taken best first, one per face per sweep;
+ *  sweeps repeat while they flip, each after the first only around the last one's flips.
  */
 
 #include "OpenMeshSkinned/Skin/Skeleton.hh"
@@ -24,7 +25,9 @@ struct FlipFitSettings {
   int sweeps = 3;
   size_t max_samples = 20000;  ///< original points (vertices, then centroids) per pose at most, evenly strided
   double min_gain = 1e-3;      ///< relative fall of the quad's error a flip must bring
-  int threads = 1;             ///< threads taking poses in turn (the answer does not depend on it)
+  /// and its absolute fall: this RMS distance, in units of the original's bounding-box diagonal, over the quad
+  double tolerance = 1e-5;
+  int threads = 1;  ///< threads taking poses in turn (the answer does not depend on it)
 };
 
 struct FlipFitReport {
