@@ -82,25 +82,54 @@ double tri_distance2(const Eigen::Vector3d& p, const Eigen::Vector3d& x, const E
   return closest_barycentric(t, p, bary);
 }
 
-// Area-weighted squared distance of triangle xyz's samples to \p original.
-// \p hint: the original's triangle the last query hit (the quad's samples lie close together).
-double area_term(const MeasuredSurface& original, const Eigen::Vector3d& x, const Eigen::Vector3d& y,
-                 const Eigen::Vector3d& z, int& hint) {
-  const double area = 0.5 * (y - x).cross(z - x).norm();
-  double sum = 0.0;
+// The posed original: its search hierarchy, its soup and its smooth (area-weighted) vertex normals.
+struct PosedOriginal {
+  const MeasuredSurface& surface;
+  const TriangleSoup& soup;
+  std::vector<Eigen::Vector3d> normal;
+};
+
+Eigen::Vector3d unit_or_zero(const Eigen::Vector3d& v) {
+  const double l = v.norm();
+  return l > 0.0 ? Eigen::Vector3d(v / l) : Eigen::Vector3d::Zero();
+}
+
+// Of a triangle's samples, area-weighted: the squared distance to the original, and how far the normal the
+// exporter would interpolate there (from the corners' unnormalised normal sums \p s) turns from the original's
+// at the nearest point (1 - cos). \p hint: the original's triangle the last query hit.
+struct Terms {
+  double distance = 0.0, normal = 0.0;
+};
+Terms face_terms(const PosedOriginal& o, const Eigen::Vector3d (&x)[3], const Eigen::Vector3d (&s)[3], int& hint) {
+  const double area = 0.5 * (x[1] - x[0]).cross(x[2] - x[0]).norm();
+  const Eigen::Vector3d u[3] = {unit_or_zero(s[0]), unit_or_zero(s[1]), unit_or_zero(s[2])};
+  Terms t;
   for (const auto& w : kBary) {
+    const Eigen::Vector3d p = w[0] * x[0] + w[1] * x[1] + w[2] * x[2];
     int tri = -1;
-    const double dist = original.distance(w[0] * x + w[1] * y + w[2] * z, tri, hint);
-    if (tri >= 0) hint = tri;
-    sum += dist * dist;
+    const double dist = o.surface.distance(p, tri, hint);
+    if (tri < 0) continue;
+    hint = tri;
+    t.distance += dist * dist;
+    const auto& T = o.soup.triangles[tri];
+    const Eigen::Vector3d corners[3] = {o.soup.points[T[0]], o.soup.points[T[1]], o.soup.points[T[2]]};
+    Eigen::Vector3d bary;
+    closest_barycentric(corners, p, bary);
+    const Eigen::Vector3d n_orig =
+        unit_or_zero(bary[0] * o.normal[T[0]] + bary[1] * o.normal[T[1]] + bary[2] * o.normal[T[2]]);
+    const Eigen::Vector3d n_lod = unit_or_zero(w[0] * u[0] + w[1] * u[1] + w[2] * u[2]);
+    t.normal += 1.0 - n_lod.dot(n_orig);
   }
-  return area * sum / 4.0;
+  t.distance *= area / 4.0;
+  t.normal *= area / 4.0;
+  return t;
 }
 
 // One pose's errors of every quad as it is and flipped, and whether the flip keeps it from folding there.
 struct PoseErrors {
   std::vector<double> before, after;
-  std::vector<double> area;  // the two faces' area
+  std::vector<double> area;                         // the two faces' area
+  std::vector<double> normal_before, normal_after;  // how far the shading normals turn from the original's
   std::vector<char> ok;
 };
 
@@ -118,14 +147,25 @@ void pose_errors(const SweepInput& in, const Pose& pose, std::unique_ptr<Measure
   posed.points = skin_positions(original, pose);
   posed.triangles = in.triangles;
   const MeasuredSurface& surface = posed_surface(slot, posed, 0, 1);
+  PosedOriginal po{surface, posed, std::vector<Eigen::Vector3d>(posed.points.size(), Eigen::Vector3d::Zero())};
   double area = 0.0;
-  for (const auto& t : in.triangles)
-    area += 0.5 * (posed.points[t[1]] - posed.points[t[0]]).cross(posed.points[t[2]] - posed.points[t[0]]).norm();
+  for (const auto& t : in.triangles) {
+    const Eigen::Vector3d x = (posed.points[t[1]] - posed.points[t[0]]).cross(posed.points[t[2]] - posed.points[t[0]]);
+    area += 0.5 * x.norm();
+    for (int v : t) po.normal[v] += x;
+  }
+  for (auto& n : po.normal) n = unit_or_zero(n);
   const double w_sample = area / double(std::max<size_t>(1, in.samples.size()));
 
   const TriangleSoup lsoup = posed_soup(in.lod, pose);
   const MeasuredSurface lsurf(lsoup, 0, 1);
   const std::vector<Eigen::Vector3d>& y = lsoup.points;
+  // The LOD's vertex normals as the exporter recomputes them: the faces' cross products summed.
+  std::vector<Eigen::Vector3d> sums(y.size(), Eigen::Vector3d::Zero());
+  for (const auto& t : lsoup.triangles) {
+    const Eigen::Vector3d x = (y[t[1]] - y[t[0]]).cross(y[t[2]] - y[t[0]]);
+    for (int v : t) sums[v] += x;
+  }
   // The original's samples, by the LOD face nearest to them (the soup's triangles are the faces in order).
   const size_t nf = in.lod.n_faces();
   std::vector<Eigen::Vector3d> at(in.samples.size());
@@ -157,7 +197,6 @@ void pose_errors(const SweepInput& in, const Pose& pose, std::unique_ptr<Measure
       if (face[k] >= 0) bucket[fill[face[k]]++] = int(k);
   }
 
-  // Each face's own term once: it is the "before" of all three of its edges.
   // Each LOD vertex's nearest triangle of the original starts the searches of the samples beside it.
   std::vector<int> near_tri(y.size(), -2);  // -2: not searched yet
   int last_tri = -1;
@@ -168,12 +207,13 @@ void pose_errors(const SweepInput& in, const Pose& pose, std::unique_ptr<Measure
     }
     return near_tri[v];
   };
-  std::vector<double> face_term(nf, -1.0);  // found when first asked for
+  // Each face's own term once, when first asked for: it is the "before" of all three of its edges.
+  std::vector<Terms> face_term(nf, Terms{-1.0, -1.0});
   auto term_of = [&](int f) {
-    if (face_term[f] < 0.0) {
+    if (face_term[f].distance < 0.0) {
       const auto& T = lsoup.triangles[f];
       int hint = hint_at(T[0]);
-      face_term[f] = area_term(surface, y[T[0]], y[T[1]], y[T[2]], hint);
+      face_term[f] = face_terms(po, {y[T[0]], y[T[1]], y[T[2]]}, {sums[T[0]], sums[T[1]], sums[T[2]]}, hint);
     }
     return face_term[f];
   };
@@ -182,6 +222,8 @@ void pose_errors(const SweepInput& in, const Pose& pose, std::unique_ptr<Measure
   out.after.assign(nq, 0.0);
   out.ok.assign(nq, 0);
   out.area.assign(nq, 0.0);
+  out.normal_before.assign(nq, 0.0);
+  out.normal_after.assign(nq, 0.0);
   for (size_t q = 0; q < nq; ++q) {
     const Quad& Q = in.quads[q];
     const Eigen::Vector3d &a = y[Q.a], &b = y[Q.b], &c = y[Q.c], &d = y[Q.d];
@@ -194,11 +236,19 @@ void pose_errors(const SweepInput& in, const Pose& pose, std::unique_ptr<Measure
     out.ok[q] = ok;
     if (!ok) continue;
     out.area[q] = 0.5 * ((b - a).cross(c - a).norm() + (a - b).cross(d - b).norm());
-    double before = term_of(Q.f1) + term_of(Q.f2);
+    const Terms t1 = term_of(Q.f1), t2 = term_of(Q.f2);
+    double before = t1.distance + t2.distance;
+    // The four corners' normal sums with the old faces' cross products out and the new ones in.
+    const Eigen::Vector3d x1 = (b - a).cross(c - a), x2 = (a - b).cross(d - b);
+    const Eigen::Vector3d sa = sums[Q.a] - x1 - x2 + n1, sb = sums[Q.b] - x1 - x2 + n2, sc = sums[Q.c] - x1 + n1 + n2,
+                          sd = sums[Q.d] - x2 + n1 + n2;
     int hint = hint_at(Q.c);
-    double after = area_term(surface, a, d, c, hint);
+    const Terms u1 = face_terms(po, {a, d, c}, {sa, sd, sc}, hint);
     hint = hint_at(Q.c);
-    after += area_term(surface, d, b, c, hint);
+    const Terms u2 = face_terms(po, {d, b, c}, {sd, sb, sc}, hint);
+    double after = u1.distance + u2.distance;
+    out.normal_before[q] = t1.normal + t2.normal;
+    out.normal_after[q] = u1.normal + u2.normal;
     for (const int f : {Q.f1, Q.f2})
       for (int s = start[f]; s < start[f + 1]; ++s) {
         const int k = bucket[s];
@@ -265,13 +315,17 @@ FlipFitReport flip_edges_to_fit(SkinnedMesh& lod, const SkinnedMesh& original, c
     const double floor = settings.tolerance * diagonal * settings.tolerance * diagonal;
     for (size_t q = 0; q < quads.size(); ++q) {
       bool ok = true;
-      double area = 0.0;
+      double area = 0.0, normal_before = 0.0, normal_after = 0.0;
       for (const PoseErrors& p : per_pose) {
         ok = ok && p.ok[q];
         before[q] += p.before[q];
         after[q] += p.after[q];
         area += p.area[q];
+        normal_before += p.normal_before[q];
+        normal_after += p.normal_after[q];
       }
+      // Nor one that turns the shading further from the original's on the quad.
+      ok = ok && normal_after <= normal_before;
       // A quad that already fits gains only rounding: both diagonals lie on the surface.
       const double gain = before[q] - after[q];
       if (ok && gain > settings.min_gain * before[q] && gain > floor * area) gains.push_back({gain, q});

@@ -9,9 +9,11 @@
  *  nearest to them to the two faces, falls. A flip is refused where it would change what the surface
  *  shows or how it bends: across an attribute seam (at a and at b both faces' corners must carry the same UVs
  *  and colours, and normals no hard edge apart, Seams.hh), between materials, where cd is already an edge,
- *  onto a degenerate face, or where the two new faces fold against each other or turn from the old ones by
- *  90 degrees or more in some pose. Flips whose faces touch are taken best first, one per face per sweep;
- *  sweeps repeat while they flip, each after the first only around the last one's flips.
+ *  onto a degenerate face, where the two new faces fold against each other or turn from the old ones by
+ *  90 degrees or more in some pose, or where the normals the exporter would recompute from the faces turn,
+ *  over the quad and summed over the poses, further from the original's smooth normals at the nearest
+ *  points (a flip that fits the shape better can still shade worse). Flips whose faces touch are taken best first, one
+ * per face per sweep; sweeps repeat while they flip, each after the first only around the last one's flips.
  */
 
 #include "OpenMeshSkinned/Skin/Skeleton.hh"
