@@ -5,6 +5,7 @@
 #include "OpenMeshSkinned/Mesh/CornerAttributes.hh"
 #include "OpenMeshSkinned/Mesh/Seams.hh"
 #include "OpenMeshSkinned/Skin/LinearBlendSkinning.hh"
+#include "OpenMeshSkinned/Solver/FitSamples.hh"
 #include "OpenMeshSkinned/Solver/Threads.hh"
 
 #include <algorithm>
@@ -174,13 +175,7 @@ void pose_errors(const SweepInput& in, const Pose& pose, std::unique_ptr<Measure
   std::vector<int> start(nf + 1, 0);
   int previous = -1;
   for (size_t k = 0; k < in.samples.size(); ++k) {
-    const size_t i = in.samples[k];
-    if (i < original.n_vertices()) {
-      at[k] = posed.points[i];
-    } else {
-      const auto& T = in.triangles[i - original.n_vertices()];
-      at[k] = (posed.points[T[0]] + posed.points[T[1]] + posed.points[T[2]]) / 3.0;
-    }
+    at[k] = sample_point(posed.points, in.triangles, original.n_vertices(), in.samples[k]);
     int tri = -1;
     const double dist = lsurf.distance(at[k], tri, previous);
     if (tri < 0) continue;
@@ -279,21 +274,8 @@ FlipFitReport flip_edges_to_fit(SkinnedMesh& lod, const SkinnedMesh& original, c
                                 const FlipFitSettings& settings) {
   FlipFitReport report;
   if (poses.empty() || lod.n_faces() < 2 || original.n_faces() == 0) return report;
-  std::vector<std::array<int, 3>> triangles;
-  for (auto fh : original.faces()) {
-    auto fv = original.cfv_iter(fh);
-    const int a = (fv++)->idx(), b = (fv++)->idx(), c = fv->idx();
-    triangles.push_back({a, b, c});
-  }
-  std::vector<size_t> samples;
-  {
-    const size_t total = original.n_vertices() + triangles.size();
-    const size_t stride =
-        std::max<size_t>(1, (total + settings.max_samples - 1) / std::max<size_t>(1, settings.max_samples));
-    for (size_t i = 0; i < total; i += stride)
-      if (i >= original.n_vertices() || !original.status(SkinnedMesh::VertexHandle(int(i))).deleted())
-        samples.push_back(i);
-  }
+  const std::vector<std::array<int, 3>> triangles = mesh_triangles(original);
+  const std::vector<size_t> samples = strided_samples(original, triangles.size(), settings.max_samples);
   const std::vector<CornerChannel> channels = corner_channels(lod);
   const double diagonal = bbox_diagonal(original);
   const int threads = std::max(1, std::min<int>(settings.threads, int(poses.size())));

@@ -6,6 +6,7 @@
 #include "OpenMeshSkinned/Skin/LinearBlendSkinning.hh"
 #include "OpenMeshSkinned/Skin/Morph.hh"
 #include "OpenMeshSkinned/Skin/SkinProperties.hh"
+#include "OpenMeshSkinned/Solver/FitSamples.hh"
 #include "OpenMeshSkinned/Solver/Threads.hh"
 
 #include <Eigen/Sparse>
@@ -136,29 +137,6 @@ std::vector<SkinnedMesh::FaceHandle> folding_faces(const SkinnedMesh& mesh,
   return out;
 }
 
-// The original's triangles, as corner indices.
-std::vector<std::array<int, 3>> triangles_of(const SkinnedMesh& original) {
-  std::vector<std::array<int, 3>> triangles;
-  for (auto fh : original.faces()) {
-    auto fv = original.cfv_iter(fh);
-    const int a = (fv++)->idx(), b = (fv++)->idx(), c = fv->idx();
-    triangles.push_back({a, b, c});
-  }
-  return triangles;
-}
-
-// The original's points whose distance to the LOD is fitted: vertices, then triangle centroids, evenly
-// strided down to max_samples.
-std::vector<size_t> strided_samples(const SkinnedMesh& original, size_t n_triangles, size_t max_samples) {
-  const size_t total = original.n_vertices() + n_triangles;
-  const size_t stride = std::max<size_t>(1, (total + max_samples - 1) / std::max<size_t>(1, max_samples));
-  std::vector<size_t> samples;
-  for (size_t i = 0; i < total; i += stride)
-    if (i >= original.n_vertices() || !original.status(SkinnedMesh::VertexHandle(int(i))).deleted())
-      samples.push_back(i);
-  return samples;
-}
-
 // What every round fits to, per pose: the original's samples posed, and the point of the posed original
 // each LOD vertex must stay on.
 struct PoseTargets {
@@ -212,12 +190,7 @@ void find_pose_targets(const SkinnedMesh& lod, const SkinnedMesh& original, cons
     auto& sp = pt.sample_at[j];
     sp.reserve(pt.samples.size());
     for (size_t i : pt.samples) {
-      if (i < original.n_vertices()) {
-        sp.push_back(posed.points[i]);
-      } else {
-        const auto& T = triangles[i - original.n_vertices()];
-        sp.push_back((posed.points[T[0]] + posed.points[T[1]] + posed.points[T[2]]) / 3.0);
-      }
+      sp.push_back(sample_point(posed.points, triangles, original.n_vertices(), i));
     }
     const MeasuredSurface& surface = posed_surface(surfaces[t], posed, 0, 1);
     if (j == 0) pt.order = leaf_order(surface, original.n_vertices(), triangles, pt.samples);
@@ -341,7 +314,7 @@ RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const
   if (poses.empty() || lod.n_faces() == 0) return report;
   const size_t nv = lod.n_vertices(), np = poses.size();
   const int threads = std::max(1, settings.threads);
-  const std::vector<std::array<int, 3>> triangles = triangles_of(original);
+  const std::vector<std::array<int, 3>> triangles = mesh_triangles(original);
   PoseTargets pt;
   pt.samples = strided_samples(original, triangles.size(), settings.max_samples);
   find_pose_targets(lod, original, poses, triangles, threads, pt);
