@@ -145,18 +145,39 @@ TEST(EdgeFlipFit, RefusesAFlipThatFoldsTheFaces) {
   EXPECT_EQ(flip_edges_to_fit(lod, original, kRest).flips, 0);
 }
 
+// Testwuson decimated to 900 faces and fitted: a LOD with flips to find.
+struct Decimated {
+  Mesh original, lod;
+};
+const Decimated& decimated_wuson() {
+  static const Decimated d = [] {
+    Decimated out{omsk_test::load_character("X/Testwuson.X", 6), Mesh()};
+    out.lod = out.original;
+    {
+      LazyDecimaterT<Mesh> dec(out.lod);
+      omsk_test::SkinnedModules<LazyDecimaterT<Mesh>> m(dec);
+      EXPECT_TRUE(dec.initialize());
+      dec.decimate_to_faces(0, 900);
+    }
+    out.lod.garbage_collection();
+    refit_positions(out.lod, out.original, example_poses(out.original));
+    return out;
+  }();
+  return d;
+}
+
+// Mean RMS over five frames of the first clip that are not example poses.
+double held_out_rms(const Mesh& original, const Mesh& lod) {
+  const Clip& c = clips(original)[0];
+  double sum = 0.0;
+  for (int i = 0; i < 5; ++i)
+    sum += omsk_test::posed_rms(original, lod, sample_pose(skeleton(original), c, c.duration * (i + 0.5) / 6));
+  return sum / 5.0;
+}
+
 TEST(EdgeFlipFit, BringsADecimatedCharacterCloserInHeldOutFrames) {
-  const Mesh original = omsk_test::load_character("X/Testwuson.X", 6);
-  Mesh lod = original;
-  {
-    LazyDecimaterT<Mesh> dec(lod);
-    omsk_test::SkinnedModules<LazyDecimaterT<Mesh>> m(dec);
-    ASSERT_TRUE(dec.initialize());
-    dec.decimate_to_faces(0, 900);
-  }
-  lod.garbage_collection();
+  const auto& [original, lod] = decimated_wuson();
   const auto& poses = example_poses(original);
-  refit_positions(lod, original, poses);
   Mesh flipped = lod;
   const FlipFitReport r = flip_edges_to_fit(flipped, original, poses);
   EXPECT_GT(r.flips, 0);
@@ -164,12 +185,41 @@ TEST(EdgeFlipFit, BringsADecimatedCharacterCloserInHeldOutFrames) {
   refit_positions(flipped, original, poses);
   EXPECT_EQ(flipped.n_faces(), lod.n_faces());
   omsk_test::expect_valid_skin(flipped, 4);
-  const Clip& c = clips(original)[0];
-  double a = 0.0, b = 0.0;
-  for (int i = 0; i < 5; ++i) {
-    const Pose p = sample_pose(skeleton(original), c, c.duration * (i + 0.5) / 6);
-    a += omsk_test::posed_rms(original, lod, p);
-    b += omsk_test::posed_rms(original, flipped, p);
+  EXPECT_LT(held_out_rms(original, flipped), 0.99 * held_out_rms(original, lod));
+}
+
+// Poses are dealt to threads in turn but summed in pose order: the same flips on any thread count.
+TEST(EdgeFlipFit, FlipsTheSameEdgesOnAnyThreadCount) {
+  const auto& [original, lod] = decimated_wuson();
+  Mesh one = lod, three = lod;
+  FlipFitSettings s;
+  s.threads = 1;
+  const FlipFitReport r1 = flip_edges_to_fit(one, original, example_poses(original), s);
+  s.threads = 3;
+  const FlipFitReport r3 = flip_edges_to_fit(three, original, example_poses(original), s);
+  ASSERT_GT(r1.flips, 0);
+  EXPECT_EQ(r1.flips, r3.flips);
+  EXPECT_EQ(r1.after, r3.after);
+  for (auto fh : one.faces()) {
+    auto a = one.fv_begin(fh), b = three.fv_begin(fh);
+    for (int k = 0; k < 3; ++k, ++a, ++b) ASSERT_EQ(a->idx(), b->idx()) << "face " << fh.idx();
   }
-  EXPECT_LT(b, 0.99 * a);
+}
+
+// The screen settles most edges in a few poses; what it lets through is judged in all of them, so the LOD
+// fits as well as one judged on every edge in every pose.
+TEST(EdgeFlipFit, TheScreenKeepsTheFlipsThatFit) {
+  const auto& [original, lod] = decimated_wuson();
+  const auto& poses = example_poses(original);
+  ASSERT_GT(poses.size(), 4u);
+  Mesh screened = lod, full = lod;
+  FlipFitSettings s;
+  const FlipFitReport rs = flip_edges_to_fit(screened, original, poses, s);
+  s.screen_poses = 0;
+  const FlipFitReport rf = flip_edges_to_fit(full, original, poses, s);
+  ASSERT_GT(rf.flips, 0);
+  EXPECT_GE(rs.flips, rf.flips * 9 / 10);
+  refit_positions(screened, original, poses);
+  refit_positions(full, original, poses);
+  EXPECT_LT(held_out_rms(original, screened), 1.005 * held_out_rms(original, full));
 }

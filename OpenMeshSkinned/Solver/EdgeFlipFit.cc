@@ -11,8 +11,10 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cmath>
 #include <memory>
 #include <numeric>
+#include <type_traits>
 
 namespace OpenMeshSkinned {
 
@@ -132,6 +134,7 @@ struct PoseErrors {
   std::vector<double> area;                         // the two faces' area
   std::vector<double> normal_before, normal_after;  // how far the shading normals turn from the original's
   std::vector<char> ok;
+  std::vector<int> sample_face;  // the LOD face each of the original's samples is nearest to (-1: not asked)
 };
 
 struct SweepInput {
@@ -140,6 +143,7 @@ struct SweepInput {
   const std::vector<std::array<int, 3>>& triangles;  // the original's
   const std::vector<size_t>& samples;                // vertices, then triangles offset by the vertex count
   const std::vector<Quad>& quads;
+  const std::vector<char>* sample_mask = nullptr;  // only these samples are bucketed (null: all)
 };
 
 void pose_errors(const SweepInput& in, const Pose& pose, std::unique_ptr<MeasuredSurface>& slot, PoseErrors& out) {
@@ -175,6 +179,7 @@ void pose_errors(const SweepInput& in, const Pose& pose, std::unique_ptr<Measure
   std::vector<int> start(nf + 1, 0);
   int previous = -1;
   for (size_t k = 0; k < in.samples.size(); ++k) {
+    if (in.sample_mask && !(*in.sample_mask)[k]) continue;
     at[k] = sample_point(posed.points, in.triangles, original.n_vertices(), in.samples[k]);
     int tri = -1;
     const double dist = lsurf.distance(at[k], tri, previous);
@@ -185,6 +190,7 @@ void pose_errors(const SweepInput& in, const Pose& pose, std::unique_ptr<Measure
     ++start[tri + 1];
   }
   std::partial_sum(start.begin(), start.end(), start.begin());
+  out.sample_face = face;
   std::vector<int> bucket(start[nf]);
   {
     std::vector<int> fill(start.begin(), start.end() - 1);
@@ -255,6 +261,112 @@ void pose_errors(const SweepInput& in, const Pose& pose, std::unique_ptr<Measure
   }
 }
 
+// The poses of the screen: \p n of \p count, evenly spread, both ends included (all when n is 0 or more).
+std::vector<size_t> screen_poses(size_t count, int n) {
+  std::vector<size_t> out;
+  if (n <= 0 || size_t(n) >= count) {
+    for (size_t j = 0; j < count; ++j) out.push_back(j);
+    return out;
+  }
+  for (int i = 0; i < n; ++i) {
+    const size_t j = n == 1 ? 0 : size_t(std::lround(double(i) * double(count - 1) / double(n - 1)));
+    if (out.empty() || out.back() != j) out.push_back(j);
+  }
+  return out;
+}
+
+// \p e's entries at \p index, in that order.
+void select(PoseErrors& e, const std::vector<size_t>& index) {
+  auto pick = [&](auto& v) {
+    std::decay_t<decltype(v)> out(index.size());
+    for (size_t i = 0; i < index.size(); ++i) out[i] = v[index[i]];
+    v.swap(out);
+  };
+  pick(e.before);
+  pick(e.after);
+  pick(e.area);
+  pick(e.normal_before);
+  pick(e.normal_after);
+  pick(e.ok);
+}
+
+// The original's samples the quads \p quads can be judged on: those that lay nearest, in one of the poses
+// of \p faces (each sample's nearest LOD face, -1: not asked), to a face sharing a vertex with a quad. A sample
+// moves across the LOD between poses, and a flip changes the faces near it, by less than a ring of faces.
+std::vector<char> samples_near(const SkinnedMesh& lod, const std::vector<Quad>& quads,
+                               const std::vector<std::vector<int>>& faces) {
+  std::vector<char> face_near(lod.n_faces(), 0);
+  for (const Quad& q : quads)
+    for (const int v : {q.a, q.b, q.c, q.d})
+      for (auto fh : lod.vf_range(SkinnedMesh::VertexHandle(v))) face_near[fh.idx()] = 1;
+  std::vector<char> mask;
+  for (const std::vector<int>& face : faces) {
+    mask.resize(face.size(), 0);
+    for (size_t k = 0; k < face.size(); ++k)
+      if (face[k] >= 0 && face_near[face[k]]) mask[k] = 1;
+  }
+  return mask;
+}
+
+void run_poses(const SweepInput& in, const std::vector<Pose>& poses, const std::vector<size_t>& which, int threads,
+               std::vector<std::unique_ptr<MeasuredSurface>>& slots, std::vector<PoseErrors>& out) {
+  std::atomic<size_t> next{0};
+  run_on_threads(std::max(1, std::min<int>(threads, int(which.size()))), [&](int t) {
+    for (size_t i = next++; i < which.size(); i = next++) pose_errors(in, poses[which[i]], slots[t], out[which[i]]);
+  });
+}
+
+// Every pose's errors of the quads that pass the screen, in \p per_pose (indexed as the returned quads). The
+// screen is a few poses spread over the list: a quad whose flip folds in one of them, or at least doubles its
+// error summed over them, is not judged in the others. In those, only the original's samples that lay near
+// a kept quad in the screen are placed on the LOD. \p first_faces: the first sweep's screen's sample faces
+// (empty: this is the first sweep; filled here), which place the later sweeps' screens' samples the same way.
+std::vector<Quad> screened_errors(const SweepInput& all, const std::vector<Pose>& poses,
+                                  const FlipFitSettings& settings, int threads,
+                                  std::vector<std::unique_ptr<MeasuredSurface>>& slots,
+                                  std::vector<std::vector<int>>& first_faces, std::vector<PoseErrors>& per_pose) {
+  const std::vector<size_t> screen = screen_poses(poses.size(), settings.screen_poses);
+  const std::vector<char> screen_mask =
+      first_faces.empty() ? std::vector<char>{} : samples_near(all.lod, all.quads, first_faces);
+  SweepInput in = all;
+  in.sample_mask = first_faces.empty() ? nullptr : &screen_mask;
+  run_poses(in, poses, screen, threads, slots, per_pose);
+  if (first_faces.empty())
+    for (size_t j : screen) first_faces.push_back(per_pose[j].sample_face);
+  if (screen.size() == poses.size()) return all.quads;
+
+  std::vector<Quad> kept;
+  std::vector<size_t> kept_index;
+  for (size_t q = 0; q < all.quads.size(); ++q) {
+    bool ok = true;
+    double before = 0.0, after = 0.0;
+    for (size_t j : screen) {
+      ok = ok && per_pose[j].ok[q];
+      before += per_pose[j].before[q];
+      after += per_pose[j].after[q];
+    }
+    if (ok && after < 2.0 * before) {
+      kept.push_back(all.quads[q]);
+      kept_index.push_back(q);
+    }
+  }
+  std::vector<std::vector<int>> faces;
+  for (size_t j : screen) {
+    select(per_pose[j], kept_index);
+    faces.push_back(per_pose[j].sample_face);
+  }
+  if (kept.empty()) return kept;
+  std::vector<char> in_screen(poses.size(), 0);
+  for (size_t j : screen) in_screen[j] = 1;
+  std::vector<size_t> rest;
+  for (size_t j = 0; j < poses.size(); ++j)
+    if (!in_screen[j]) rest.push_back(j);
+  const std::vector<char> mask = samples_near(all.lod, kept, faces);
+  const SweepInput judged{all.lod, all.original, all.triangles, all.samples, kept, &mask};
+  run_poses(judged, poses, rest, threads, slots, per_pose);
+  return kept;
+}
+
 // Flips \p e and gives the two halfedges it turned into the corners of the vertices they now point to.
 void flip_keeping_corners(SkinnedMesh& mesh, SkinnedMesh::EdgeHandle e, const std::vector<CornerChannel>& channels) {
   const HH h0 = mesh.halfedge_handle(e, 0), h1 = mesh.halfedge_handle(e, 1);
@@ -282,20 +394,19 @@ FlipFitReport flip_edges_to_fit(SkinnedMesh& lod, const SkinnedMesh& original, c
   std::vector<std::unique_ptr<MeasuredSurface>> slots(threads);
   // After the first sweep, only edges near a flip can have changed their answer.
   std::vector<char> near;
+  // The first sweep's screen: where the original's samples lie on the LOD, for the later sweeps' screens.
+  std::vector<std::vector<int>> first_faces;
   for (int sweep = 0; sweep < settings.sweeps; ++sweep) {
     const std::vector<Quad> quads = flippable(lod, near);
     if (quads.empty()) break;
-    const SweepInput in{lod, original, triangles, samples, quads};
     std::vector<PoseErrors> per_pose(poses.size());
-    std::atomic<size_t> next{0};
-    run_on_threads(threads, [&](int t) {
-      for (size_t j = next++; j < poses.size(); j = next++) pose_errors(in, poses[j], slots[t], per_pose[j]);
-    });
+    const SweepInput in{lod, original, triangles, samples, quads};
+    const std::vector<Quad> kept = screened_errors(in, poses, settings, threads, slots, first_faces, per_pose);
     // Summed in pose order, so that the answer does not depend on the thread count.
     std::vector<std::pair<double, size_t>> gains;
-    std::vector<double> before(quads.size(), 0.0), after(quads.size(), 0.0);
+    std::vector<double> before(kept.size(), 0.0), after(kept.size(), 0.0);
     const double floor = settings.tolerance * diagonal * settings.tolerance * diagonal;
-    for (size_t q = 0; q < quads.size(); ++q) {
+    for (size_t q = 0; q < kept.size(); ++q) {
       bool ok = true;
       double area = 0.0, normal_before = 0.0, normal_after = 0.0;
       for (const PoseErrors& p : per_pose) {
@@ -319,7 +430,7 @@ FlipFitReport flip_edges_to_fit(SkinnedMesh& lod, const SkinnedMesh& original, c
     near.assign(lod.n_vertices(), 0);
     int flips = 0;
     for (const auto& [gain, q] : gains) {
-      const Quad& Q = quads[q];
+      const Quad& Q = kept[q];
       if (touched[Q.f1] || touched[Q.f2] || !lod.is_flip_ok(Q.edge)) continue;
       touched[Q.f1] = touched[Q.f2] = 1;
       near[Q.a] = near[Q.b] = near[Q.c] = near[Q.d] = 1;
