@@ -74,18 +74,29 @@ struct Normal {
   size_t n = 0;
   Normal(const BlockPattern& p, size_t nv)
       : pattern(p), blocks(p.cols.size(), Eigen::Matrix3d::Zero()), rhs(Eigen::VectorXd::Zero(long(3 * nv))) {}
+  /// A residual measured along \p normal (unit) in full and across it with weight \p tangential; a zero
+  /// normal or a tangential weight of 1 measures it in full every way.
   void add(const int* v, const double* b, int m, const std::vector<AffineVertex>& av,
-           const std::vector<Eigen::Vector3d>& x, const Eigen::Vector3d& target) {
+           const std::vector<Eigen::Vector3d>& x, const Eigen::Vector3d& target,
+           const Eigen::Vector3d& normal = Eigen::Vector3d::Zero(), double tangential = 1.0) {
     Eigen::Vector3d r = -target;
     for (int i = 0; i < m; ++i) r += b[i] * (av[v[i]].A * x[v[i]] + av[v[i]].c);
     sum_sq += r.squaredNorm();
     ++n;
-    // J_i = b_i A_i; the step solves J^T J dx = -J^T r.
+    // With P = n n^T + t (I - n n^T), the residual P r: its normal equations weigh by W = P^T P.
+    Eigen::Matrix3d W = Eigen::Matrix3d::Identity();
+    if (tangential != 1.0 && normal.squaredNorm() > 0.0) {
+      const Eigen::Matrix3d nn = normal * normal.transpose();
+      W = nn + tangential * tangential * (Eigen::Matrix3d::Identity() - nn);
+    }
+    // J_i = b_i A_i; the step solves J^T W J dx = -J^T W r.
     Eigen::Matrix3d J[3];
     for (int i = 0; i < m; ++i) J[i] = b[i] * av[v[i]].A;
+    const Eigen::Vector3d Wr = W * r;
     for (int i = 0; i < m; ++i) {
-      rhs.segment<3>(3 * v[i]) -= J[i].transpose() * r;
-      for (int j = 0; j < m; ++j) blocks[pattern.find(v[i], v[j])] += J[i].transpose() * J[j];
+      rhs.segment<3>(3 * v[i]) -= J[i].transpose() * Wr;
+      const Eigen::Matrix3d JtW = J[i].transpose() * W;
+      for (int j = 0; j < m; ++j) blocks[pattern.find(v[i], v[j])] += JtW * J[j];
     }
   }
   void add_diagonal(size_t v, double lambda) {
@@ -109,6 +120,7 @@ struct Hit {
   int id = -1;  // the triangle's index in the posed LOD's soup (the same every round: the topology is fixed)
   std::array<int, 3> tri;
   Eigen::Vector3d bary;
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // across the posed LOD there (unit)
 };
 
 // Runs work(t, j) for j in [0, n) on up to \p threads threads, t the thread's number; each j is done by
@@ -235,18 +247,32 @@ void project_samples(const SkinnedMesh& lod, const std::vector<Pose>& poses, con
       h.tri = lsoup.triangles[tri];
       const Eigen::Vector3d corners[3] = {lsoup.points[h.tri[0]], lsoup.points[h.tri[1]], lsoup.points[h.tri[2]]};
       closest_barycentric(corners, pt.sample_at[j][s], h.bary);
+      // The direction the sample lies in from its nearest point: the face's normal when that point is inside
+      // the face, and across an edge or corner it turns with the sample from one face's normal to the next,
+      // so the fit does not jump where the nearest point crosses an edge.
+      const Eigen::Vector3d nearest = h.bary[0] * corners[0] + h.bary[1] * corners[1] + h.bary[2] * corners[2];
+      const Eigen::Vector3d off = pt.sample_at[j][s] - nearest;
+      const Eigen::Vector3d fn = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
+      if (h.bary.minCoeff() <= 0.0 && off.norm() > 0.0)
+        h.normal = off.normalized();
+      else
+        h.normal = fn.norm() > 0.0 ? Eigen::Vector3d(fn.normalized()) : Eigen::Vector3d::Zero();
     }
   });
 }
 
 // The residuals of every pose, summed in pose order so that the answer does not depend on the thread count.
+// A sample's nearest point on the LOD is last round's answer: along the surface it says little of where the
+// sample belongs, so the part of its residual across the LOD face's normal weighs \p tangential (1: in full).
 void add_residuals(const SkinnedMesh& lod, const PoseTargets& pt, const std::vector<std::vector<Hit>>& hits,
                    const std::vector<std::vector<AffineVertex>>& affine, const std::vector<Eigen::Vector3d>& x,
-                   Normal& ne) {
+                   double tangential, Normal& ne) {
   for (size_t j = 0; j < affine.size(); ++j) {
     const std::vector<AffineVertex>& av = affine[j];
     for (size_t s = 0; s < pt.samples.size(); ++s)
-      if (hits[j][s].tri[0] >= 0) ne.add(hits[j][s].tri.data(), hits[j][s].bary.data(), 3, av, x, pt.sample_at[j][s]);
+      if (hits[j][s].tri[0] >= 0)
+        ne.add(hits[j][s].tri.data(), hits[j][s].bary.data(), 3, av, x, pt.sample_at[j][s], hits[j][s].normal,
+               tangential);
     // The LOD's vertices onto the original.
     for (auto vh : lod.vertices()) {
       if (!pt.has_target[j][vh.idx()]) continue;
@@ -332,7 +358,7 @@ RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const
     for (auto vh : lod.vertices()) x[vh.idx()] = to_eigen(lod.point(vh));
     project_samples(lod, poses, pt, threads, hits);
     Normal ne(pattern, nv);
-    add_residuals(lod, pt, hits, affine, x, ne);
+    add_residuals(lod, pt, hits, affine, x, settings.tangential_weight, ne);
     const double rms = std::sqrt(ne.sum_sq / std::max<size_t>(1, ne.n));
     if (round == 0) report.before = rms;
     report.after = rms;

@@ -6,7 +6,8 @@
  *  sparse linear least-squares problem; correspondences are then found again, a few rounds.
  *
  *  Residuals, in every example pose: each original vertex and triangle centroid to its closest point on the
- *  posed LOD (the LOD must cover the original; found again each round), and each LOD vertex to the point of
+ *  posed LOD (the LOD must cover the original; found again each round; weighed less along the LOD's surface
+ *  than across it, RefitSettings::tangential_weight), and each LOD vertex to the point of
  *  the posed original nearest to it as decimated (the LOD must not leave the original; found once per
  *  pose, one search hierarchy per thread), plus a small pull toward the decimated positions (so that directions
  *  nothing constrains stay put). A round whose positions would turn a face by more than 90
@@ -23,7 +24,10 @@ namespace OpenMeshSkinned {
 struct RefitSettings {
   int rounds = 3;
   double regularization = 1e-3;  ///< weight of the pull toward the decimated position, relative to one residual
-  size_t max_samples = 20000;    ///< original points (vertices, then centroids) per pose at most, evenly strided
+  /// weight of the part of an original sample's residual along the LOD's surface, relative to the part along
+  /// its normal (1: point to point; below, the fit slides along the surface as point-to-plane ICP does)
+  double tangential_weight = 0.7;
+  size_t max_samples = 20000;  ///< original points (vertices, then centroids) per pose at most, evenly strided
   /// Threads taking poses in turn (the answer does not depend on it; each holds one search hierarchy of the
   /// posed original, posed again for its next pose).
   int threads = 1;
