@@ -106,6 +106,16 @@ TEST(Refit, SlidingAlongTheSurfaceFitsCloserInTheSameRounds) {
   EXPECT_LT(sliding, point);
 }
 
+TEST(Refit, RefusesATangentialWeightOutsideZeroToOne) {
+  const Mesh original = omsk_test::load_character("X/Testwuson.X", 4);
+  for (const double t : {0.0, -0.5, 1.5}) {
+    Mesh copy = original;
+    RefitSettings s;
+    s.tangential_weight = t;
+    EXPECT_THROW(refit_positions(copy, original, example_poses(original), s), std::invalid_argument) << t;
+  }
+}
+
 TEST(Refit, NothingToFitIsNoChange) {
   const Mesh original = omsk_test::load_character("X/Testwuson.X", 4);
   Mesh copy = original;

@@ -261,7 +261,7 @@ void pose_errors(const SweepInput& in, const Pose& pose, std::unique_ptr<Measure
   }
 }
 
-// The poses of the screen: \p n of \p count, evenly spread, both ends included (all when n is 0 or more).
+// The poses of the screen: \p n of \p count, evenly spread, both ends included (all when n <= 0 or n >= count).
 std::vector<size_t> screen_poses(size_t count, int n) {
   std::vector<size_t> out;
   if (n <= 0 || size_t(n) >= count) {
@@ -290,9 +290,11 @@ void select(PoseErrors& e, const std::vector<size_t>& index) {
   pick(e.ok);
 }
 
-// The original's samples the quads \p quads can be judged on: those that lay nearest, in one of the poses
-// of \p faces (each sample's nearest LOD face, -1: not asked), to a face sharing a vertex with a quad. A sample
-// moves across the LOD between poses, and a flip changes the faces near it, by less than a ring of faces.
+// The original's samples the quads \p quads are judged on outside the screen: those that lay nearest, in one
+// of the poses of \p faces (each sample's nearest LOD face, -1: not known), to a face sharing a vertex with a
+// quad. A sample that is nearest to one of the quad's two faces in another pose, or after a flip nearby,
+// without ever lying within that ring in the screen is left out: it would have to cross more than a ring of
+// faces between poses.
 std::vector<char> samples_near(const SkinnedMesh& lod, const std::vector<Quad>& quads,
                                const std::vector<std::vector<int>>& faces) {
   std::vector<char> face_near(lod.n_faces(), 0);
@@ -319,21 +321,34 @@ void run_poses(const SweepInput& in, const std::vector<Pose>& poses, const std::
 // Every pose's errors of the quads that pass the screen, in \p per_pose (indexed as the returned quads). The
 // screen is a few poses spread over the list: a quad whose flip folds in one of them, or at least doubles its
 // error summed over them, is not judged in the others. In those, only the original's samples that lay near
-// a kept quad in the screen are placed on the LOD. \p first_faces: the first sweep's screen's sample faces
-// (empty: this is the first sweep; filled here), which place the later sweeps' screens' samples the same way.
+// a kept quad in the screen are placed on the LOD (samples_near). \p screen_faces: where each sample last lay
+// on the LOD in each of the screen's poses (empty before the first sweep; updated here), which places the
+// later sweeps' screens' samples the same way. Without a screen (every pose in it) every sample of every pose
+// is placed.
 std::vector<Quad> screened_errors(const SweepInput& all, const std::vector<Pose>& poses,
                                   const FlipFitSettings& settings, int threads,
                                   std::vector<std::unique_ptr<MeasuredSurface>>& slots,
-                                  std::vector<std::vector<int>>& first_faces, std::vector<PoseErrors>& per_pose) {
+                                  std::vector<std::vector<int>>& screen_faces, std::vector<PoseErrors>& per_pose) {
   const std::vector<size_t> screen = screen_poses(poses.size(), settings.screen_poses);
+  if (screen.size() == poses.size()) {
+    run_poses(all, poses, screen, threads, slots, per_pose);
+    return all.quads;
+  }
   const std::vector<char> screen_mask =
-      first_faces.empty() ? std::vector<char>{} : samples_near(all.lod, all.quads, first_faces);
+      screen_faces.empty() ? std::vector<char>{} : samples_near(all.lod, all.quads, screen_faces);
   SweepInput in = all;
-  in.sample_mask = first_faces.empty() ? nullptr : &screen_mask;
+  in.sample_mask = screen_faces.empty() ? nullptr : &screen_mask;
   run_poses(in, poses, screen, threads, slots, per_pose);
-  if (first_faces.empty())
-    for (size_t j : screen) first_faces.push_back(per_pose[j].sample_face);
-  if (screen.size() == poses.size()) return all.quads;
+  screen_faces.resize(screen.size());
+  for (size_t i = 0; i < screen.size(); ++i) {
+    const std::vector<int>& now = per_pose[screen[i]].sample_face;
+    if (screen_faces[i].empty()) {
+      screen_faces[i] = now;
+      continue;
+    }
+    for (size_t k = 0; k < now.size(); ++k)
+      if (now[k] >= 0) screen_faces[i][k] = now[k];
+  }
 
   std::vector<Quad> kept;
   std::vector<size_t> kept_index;
@@ -345,23 +360,19 @@ std::vector<Quad> screened_errors(const SweepInput& all, const std::vector<Pose>
       before += per_pose[j].before[q];
       after += per_pose[j].after[q];
     }
-    if (ok && after < 2.0 * before) {
+    if (ok && !(after >= 2.0 * before && after > 0.0)) {
       kept.push_back(all.quads[q]);
       kept_index.push_back(q);
     }
   }
-  std::vector<std::vector<int>> faces;
-  for (size_t j : screen) {
-    select(per_pose[j], kept_index);
-    faces.push_back(per_pose[j].sample_face);
-  }
+  for (size_t j : screen) select(per_pose[j], kept_index);
   if (kept.empty()) return kept;
   std::vector<char> in_screen(poses.size(), 0);
   for (size_t j : screen) in_screen[j] = 1;
   std::vector<size_t> rest;
   for (size_t j = 0; j < poses.size(); ++j)
     if (!in_screen[j]) rest.push_back(j);
-  const std::vector<char> mask = samples_near(all.lod, kept, faces);
+  const std::vector<char> mask = samples_near(all.lod, kept, screen_faces);
   const SweepInput judged{all.lod, all.original, all.triangles, all.samples, kept, &mask};
   run_poses(judged, poses, rest, threads, slots, per_pose);
   return kept;
@@ -394,14 +405,14 @@ FlipFitReport flip_edges_to_fit(SkinnedMesh& lod, const SkinnedMesh& original, c
   std::vector<std::unique_ptr<MeasuredSurface>> slots(threads);
   // After the first sweep, only edges near a flip can have changed their answer.
   std::vector<char> near;
-  // The first sweep's screen: where the original's samples lie on the LOD, for the later sweeps' screens.
-  std::vector<std::vector<int>> first_faces;
+  // Where the original's samples lay on the LOD in the screen's poses, for the later sweeps' screens.
+  std::vector<std::vector<int>> screen_faces;
   for (int sweep = 0; sweep < settings.sweeps; ++sweep) {
     const std::vector<Quad> quads = flippable(lod, near);
     if (quads.empty()) break;
     std::vector<PoseErrors> per_pose(poses.size());
     const SweepInput in{lod, original, triangles, samples, quads};
-    const std::vector<Quad> kept = screened_errors(in, poses, settings, threads, slots, first_faces, per_pose);
+    const std::vector<Quad> kept = screened_errors(in, poses, settings, threads, slots, screen_faces, per_pose);
     // Summed in pose order, so that the answer does not depend on the thread count.
     std::vector<std::pair<double, size_t>> gains;
     std::vector<double> before(kept.size(), 0.0), after(kept.size(), 0.0);

@@ -15,7 +15,7 @@
  *  points (a flip that fits the shape better can still shade worse). Flips whose faces touch are taken best first, one
  * per face per sweep; sweeps repeat while they flip, each after the first only around the last one's flips.
  *  Most edges are settled by a screen of a few poses (FlipFitSettings::screen_poses); the rest are summed over
- *  every pose, so a flip that passes the screen is judged as it would be without it.
+ *  every pose, on the original's samples that lay near them in the screen.
  */
 
 #include "OpenMeshSkinned/Skin/Skeleton.hh"
@@ -33,7 +33,8 @@ struct FlipFitSettings {
   double tolerance = 1e-5;
   int threads = 1;  ///< threads taking poses in turn (the answer does not depend on it)
   /// Poses, spread over the list, that screen the edges first: one whose flip folds in one of them, or at least
-  /// doubles the quad's error summed over them, is not judged in the others (0: every edge in every pose)
+  /// doubles the quad's error summed over them, is not judged in the others (0 or at least the pose count:
+  /// every edge in every pose, on every sample)
   int screen_poses = 4;
 };
 

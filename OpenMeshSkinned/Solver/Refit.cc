@@ -16,6 +16,7 @@
 #include <atomic>
 #include <cmath>
 #include <memory>
+#include <stdexcept>
 
 namespace OpenMeshSkinned {
 
@@ -120,7 +121,7 @@ struct Hit {
   int id = -1;  // the triangle's index in the posed LOD's soup (the same every round: the topology is fixed)
   std::array<int, 3> tri;
   Eigen::Vector3d bary;
-  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // across the posed LOD there (unit)
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();  // across the posed LOD there (unit; zero: no direction)
 };
 
 // Runs work(t, j) for j in [0, n) on up to \p threads threads, t the thread's number; each j is done by
@@ -253,7 +254,10 @@ void project_samples(const SkinnedMesh& lod, const std::vector<Pose>& poses, con
       const Eigen::Vector3d nearest = h.bary[0] * corners[0] + h.bary[1] * corners[1] + h.bary[2] * corners[2];
       const Eigen::Vector3d off = pt.sample_at[j][s] - nearest;
       const Eigen::Vector3d fn = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
-      if (h.bary.minCoeff() <= 0.0 && off.norm() > 0.0)
+      // A sample within rounding of an edge has no direction of its own: the face's is as good.
+      const double rounding = 1e-9 * std::max({(corners[1] - corners[0]).norm(), (corners[2] - corners[1]).norm(),
+                                               (corners[0] - corners[2]).norm()});
+      if (h.bary.minCoeff() <= 0.0 && off.norm() > rounding)
         h.normal = off.normalized();
       else
         h.normal = fn.norm() > 0.0 ? Eigen::Vector3d(fn.normalized()) : Eigen::Vector3d::Zero();
@@ -263,7 +267,7 @@ void project_samples(const SkinnedMesh& lod, const std::vector<Pose>& poses, con
 
 // The residuals of every pose, summed in pose order so that the answer does not depend on the thread count.
 // A sample's nearest point on the LOD is last round's answer: along the surface it says little of where the
-// sample belongs, so the part of its residual across the LOD face's normal weighs \p tangential (1: in full).
+// sample belongs, so the part of its residual perpendicular to Hit::normal weighs \p tangential (1: in full).
 void add_residuals(const SkinnedMesh& lod, const PoseTargets& pt, const std::vector<std::vector<Hit>>& hits,
                    const std::vector<std::vector<AffineVertex>>& affine, const std::vector<Eigen::Vector3d>& x,
                    double tangential, Normal& ne) {
@@ -337,6 +341,8 @@ bool solve_step(const Eigen::SparseMatrix<double>& JtJ, const Eigen::VectorXd& r
 RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const std::vector<Pose>& poses,
                             const RefitSettings& settings) {
   RefitReport report;
+  if (!(settings.tangential_weight > 0.0 && settings.tangential_weight <= 1.0))
+    throw std::invalid_argument("refit: the tangential weight must be in (0, 1]");
   if (poses.empty() || lod.n_faces() == 0) return report;
   const size_t nv = lod.n_vertices(), np = poses.size();
   const int threads = std::max(1, settings.threads);

@@ -24,8 +24,9 @@ namespace OpenMeshSkinned {
 struct RefitSettings {
   int rounds = 3;
   double regularization = 1e-3;  ///< weight of the pull toward the decimated position, relative to one residual
-  /// weight of the part of an original sample's residual along the LOD's surface, relative to the part along
-  /// its normal (1: point to point; below, the fit slides along the surface as point-to-plane ICP does)
+  /// weight, in (0, 1], of the part of an original sample's residual along the LOD's surface, relative to the
+  /// part across it (its square in the energy; 1: point to point; below, the fit slides along the surface as
+  /// point-to-plane ICP does). RefitReport's residuals stay point to point.
   double tangential_weight = 0.7;
   size_t max_samples = 20000;  ///< original points (vertices, then centroids) per pose at most, evenly strided
   /// Threads taking poses in turn (the answer does not depend on it; each holds one search hierarchy of the
