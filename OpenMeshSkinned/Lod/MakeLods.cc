@@ -57,6 +57,8 @@ void keep_bound_after_refit(const SkinnedMesh& original, SkinnedMesh& lmesh, std
 // The edge flips' search costs about a posed original's worth of nearest-point queries per pose and
 // sweep; above this size it is a large part of the run for a few percent (bench/README.md).
 constexpr size_t kFlipMaxVertices = 20000;
+// Passes of the final fit after the flips on those inputs (bench/README.md).
+constexpr int kExtraFitPasses = 2;
 
 void refit_chain(const SkinnedMesh& mesh, LodChain& chain, const LodOptions& opt, const LodCallbacks& cb) {
   for (size_t i = 0; i < chain.levels.size(); ++i) {
@@ -75,12 +77,14 @@ void refit_chain(const SkinnedMesh& mesh, LodChain& chain, const LodOptions& opt
       FlipFitSettings fs;
       fs.threads = fit.threads;
       const FlipFitReport f = flip_edges_to_fit(lmesh, mesh, chain.poses.examples, fs);
-      if (f.flips > 0) {
-        // Fitted again: the flipped faces' vertices were placed for the old ones.
+      if (f.flips > 0) flipped = ", " + std::to_string(f.flips) + " edges flipped";
+      // Two more passes: each finds the LOD vertices' points on the posed original again, and the pull toward
+      // where it starts, from where the last pass left them, so the fit goes on where the first one's anchors
+      // held it (and the flipped faces' vertices are fitted to their new faces).
+      for (int pass = 0; pass < kExtraFitPasses; ++pass) {
         const RefitReport again = refit_positions(lmesh, mesh, chain.poses.examples, fit);
         r.after = again.after;
         r.rounds += again.rounds;
-        flipped = ", " + std::to_string(f.flips) + " edges flipped";
       }
     }
     cb.say("refit " + fixed_number(100.0 * lod.ratio, 1) + "%: residual " + plain(r.before) + " -> " + plain(r.after) +
