@@ -52,10 +52,10 @@ bool same_corner(const SkinnedMesh& mesh, const std::vector<CornerChannel>& chan
 
 // The edges that may flip as far as the mesh's connectivity and attributes go.
 // \p near: only edges with a vertex flagged there (empty: all).
-std::vector<Quad> flippable(const SkinnedMesh& mesh, const std::vector<char>& near) {
+std::vector<Quad> flippable(const SkinnedMesh& mesh, const std::vector<CornerChannel>& channels,
+                            const std::vector<char>& near) {
   OpenMesh::FPropHandleT<int> h_mat;
   const bool has_mat = mesh.get_property_handle(h_mat, prop_names::kFaceMaterial);
-  const std::vector<CornerChannel> channels = corner_channels(mesh);
   std::vector<Quad> out;
   for (auto eh : mesh.edges()) {
     if (mesh.is_boundary(eh) || !mesh.is_flip_ok(eh)) continue;
@@ -91,6 +91,18 @@ struct PosedOriginal {
   const TriangleSoup& soup;
   std::vector<Eigen::Vector3d> normal;
 };
+
+// Per vertex, the cross products of the triangles around it summed: twice their area-weighted normal, the
+// normal the exporter recomputes once normalised.
+std::vector<Eigen::Vector3d> normal_sums(const std::vector<Eigen::Vector3d>& p,
+                                         const std::vector<std::array<int, 3>>& triangles) {
+  std::vector<Eigen::Vector3d> sums(p.size(), Eigen::Vector3d::Zero());
+  for (const auto& t : triangles) {
+    const Eigen::Vector3d x = (p[t[1]] - p[t[0]]).cross(p[t[2]] - p[t[0]]);
+    for (int v : t) sums[v] += x;
+  }
+  return sums;
+}
 
 Eigen::Vector3d unit_or_zero(const Eigen::Vector3d& v) {
   const double l = v.norm();
@@ -152,25 +164,17 @@ void pose_errors(const SweepInput& in, const Pose& pose, std::unique_ptr<Measure
   posed.points = skin_positions(original, pose);
   posed.triangles = in.triangles;
   const MeasuredSurface& surface = posed_surface(slot, posed, 0, 1);
-  PosedOriginal po{surface, posed, std::vector<Eigen::Vector3d>(posed.points.size(), Eigen::Vector3d::Zero())};
-  double area = 0.0;
-  for (const auto& t : in.triangles) {
-    const Eigen::Vector3d x = (posed.points[t[1]] - posed.points[t[0]]).cross(posed.points[t[2]] - posed.points[t[0]]);
-    area += 0.5 * x.norm();
-    for (int v : t) po.normal[v] += x;
-  }
+  PosedOriginal po{surface, posed, normal_sums(posed.points, in.triangles)};
   for (auto& n : po.normal) n = unit_or_zero(n);
+  double area = 0.0;
+  for (const auto& t : in.triangles)
+    area += 0.5 * (posed.points[t[1]] - posed.points[t[0]]).cross(posed.points[t[2]] - posed.points[t[0]]).norm();
   const double w_sample = area / double(std::max<size_t>(1, in.samples.size()));
 
   const TriangleSoup lsoup = posed_soup(in.lod, pose);
   const MeasuredSurface lsurf(lsoup, 0, 1);
   const std::vector<Eigen::Vector3d>& y = lsoup.points;
-  // The LOD's vertex normals as the exporter recomputes them: the faces' cross products summed.
-  std::vector<Eigen::Vector3d> sums(y.size(), Eigen::Vector3d::Zero());
-  for (const auto& t : lsoup.triangles) {
-    const Eigen::Vector3d x = (y[t[1]] - y[t[0]]).cross(y[t[2]] - y[t[0]]);
-    for (int v : t) sums[v] += x;
-  }
+  const std::vector<Eigen::Vector3d> sums = normal_sums(y, lsoup.triangles);
   // The original's samples, by the LOD face nearest to them (the soup's triangles are the faces in order).
   const size_t nf = in.lod.n_faces();
   std::vector<Eigen::Vector3d> at(in.samples.size());
@@ -408,7 +412,7 @@ FlipFitReport flip_edges_to_fit(SkinnedMesh& lod, const SkinnedMesh& original, c
   // Where the original's samples lay on the LOD in the screen's poses, for the later sweeps' screens.
   std::vector<std::vector<int>> screen_faces;
   for (int sweep = 0; sweep < settings.sweeps; ++sweep) {
-    const std::vector<Quad> quads = flippable(lod, near);
+    const std::vector<Quad> quads = flippable(lod, channels, near);
     if (quads.empty()) break;
     std::vector<PoseErrors> per_pose(poses.size());
     const SweepInput in{lod, original, triangles, samples, quads};
