@@ -2,8 +2,11 @@
 
 #include <OpenMeshSkinned/Decimater/LazyDecimaterT.hh>
 #include <OpenMeshSkinned/Mesh/Procedural.hh>
+#include <OpenMeshSkinned/Solver/SolverSettings.hh>
 
 #include <OpenMesh/Tools/Decimater/ModQuadricT.hh>
+
+#include <cmath>
 
 using namespace OpenMeshSkinned;
 using omsk_test::Mesh;
@@ -194,4 +197,41 @@ void per_area_against_energy() {
 // vertices, it measured worse at 50% and 25% (ModSkinnedQuadricT.hh).
 TEST(ModSkinnedQuadric, PricingPerAreaKeepsTheWorstCaseDownOnARealCharacter) {
   per_area_against_energy<OpenMeshSkinned::LazyDecimaterT<Mesh>>();
+}
+
+TEST(ModSkinnedQuadric, AreaExponentAndFloorAreCheckedAndPerAreaIsExponentOne) {
+  Mesh mesh = make_bending_cylinder(8, 8);
+  LazyDecimaterT<Mesh> dec(mesh);
+  ModSkinnedQuadricT<Mesh>::Handle hq;
+  dec.add(hq);
+  auto& m = dec.module(hq);
+  EXPECT_EQ(m.area_exponent(), 0.0);
+  m.set_error_per_area(true);
+  EXPECT_EQ(m.area_exponent(), 1.0);
+  m.set_area_exponent(0.5);
+  EXPECT_FALSE(m.error_per_area());
+  for (double bad : {-0.01, 1.01, std::nan("")}) EXPECT_THROW(m.set_area_exponent(bad), std::invalid_argument);
+  EXPECT_EQ(m.area_exponent(), 0.5);
+  for (double bad : {-1.0, HUGE_VAL, std::nan("")}) EXPECT_THROW(m.set_area_floor(bad), std::invalid_argument);
+  m.set_area_floor(4.0);
+  EXPECT_EQ(m.area_floor(), 4.0);
+}
+
+TEST(ModSkinnedQuadric, AreaPriceIsPerAreaBelowTheFloorAndOverAPowerAbove) {
+  SolverSettings s;
+  CollapseResult r;
+  r.error = 8.0;
+  r.area = 16.0;
+  EXPECT_EQ(s.priority(r), 8.0);  // exponent 0: the energy
+  s.area_exponent = 1.0;
+  EXPECT_EQ(s.priority(r), 0.5);
+  s.area_exponent = 0.5;
+  s.area_floor = 4.0;
+  EXPECT_DOUBLE_EQ(s.priority(r), 8.0 / 4.0);  // above the floor: over the square root
+  r.area = 1.0;
+  EXPECT_DOUBLE_EQ(s.priority(r), 8.0 / 1.0 * 2.0);  // below: per area, times floor^(1/2), meeting at 4
+  r.area = 4.0;
+  EXPECT_DOUBLE_EQ(s.priority(r), 8.0 / 2.0);
+  r.area = 0.0;
+  EXPECT_EQ(s.priority(r), 0.0);
 }

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cfloat>
+#include <stdexcept>
+#include <string>
 
 namespace OpenMeshSkinned {
 
@@ -18,11 +20,14 @@ namespace OpenMeshSkinned {
  *  set_error_per_area(true) divides that energy by the area the edge's quadrics stand for: the priority is
  *  then a mean squared distance (length^2), as meshoptimizer normalises its quadrics. The paper's energy
  *  makes a small sharp feature (a horn's tip) cheap because its faces are small, whatever its distance; per
- *  area it costs what its distance says. Measured on held-out frames under LazyDecimaterT, per area lowers
- *  the worst case a lot and the RMS at the coarser levels, for a little more RMS at the finest (bench/README.md,
- *  "Defaults chosen by measurement"); the command-line tool uses it. Under DecimaterT, whose stale-verdict
- *  handling locks and defers vertices, it measured worse at 50% and 25% (the same section): use it with
- *  LazyDecimaterT.
+ *  area it costs what its distance says, but a broad shallow bend then costs as much as a narrow one of the
+ *  same depth, though it moves far more of the surface. set_area_exponent(a) prices by energy / area^a,
+ *  between the two, and set_area_floor(A) keeps the per-area price (scaled to meet the other at A) for
+ *  collapses standing for less than A: features smaller than that stay as dear as per area. The command-line
+ *  tool uses a = 0.5 on small inputs and 1 on large ones (Lod/LodAreaExponent.hh), with a floor of two of the
+ *  coarsest level's mean triangles (bench/README.md, "Defaults chosen by measurement"). Under DecimaterT, whose
+ * stale-verdict handling locks and defers vertices, per area measured worse at 50% and 25% (the same section): use the
+ * area pricing with LazyDecimaterT.
  *
  *  When a collapse happens, the surviving vertex moves to the optimal rest position and takes the
  *  optimal weights, its corner UVs (per-halfedge texcoords, when the mesh has them) are re-interpolated
@@ -43,8 +48,8 @@ public:
 
   explicit ModSkinnedQuadricT(MeshT& mesh) : SolverModuleT<MeshT>(mesh, false) { this->settings_changed(); }
 
-  /// Collapses whose error exceeds \p err (length^4 units, or length^2 per area; see class docs) are
-  /// refused. Default: none.
+  /// Collapses whose priority exceeds \p err (length^4 units as energy, length^2 per area, between for
+  /// an area exponent between; see class docs) are refused. Default: none.
   void set_max_err(double err) { max_err_ = err; }
   double max_err() const { return max_err_; }
   void unset_max_err() { max_err_ = DBL_MAX; }
@@ -63,12 +68,32 @@ public:
   }
   double tolerance() const { return tolerance_; }
 
-  /// Prices collapses by error / area (a mean squared distance) instead of the paper's energy. Default off.
-  void set_error_per_area(bool on) {
-    per_area_ = on;
+  /// Prices collapses by error / area (a mean squared distance) instead of the paper's energy: the same as
+  /// set_area_exponent(on ? 1 : 0). Default off.
+  void set_error_per_area(bool on) { set_area_exponent(on ? 1.0 : 0.0); }
+  bool error_per_area() const { return area_exponent_ == 1.0; }
+
+  /** Prices collapses by energy / area^\p a: 0 is the paper's energy (the default), 1 the mean squared
+   *  distance of set_error_per_area(true). Throws std::invalid_argument outside [0, 1]. */
+  void set_area_exponent(double a) {
+    if (!(a >= 0.0 && a <= 1.0))
+      throw std::invalid_argument("ModSkinnedQuadricT: the area exponent must be in [0, 1], not " + std::to_string(a));
+    area_exponent_ = a;
     this->settings_changed();
   }
-  bool error_per_area() const { return per_area_; }
+  double area_exponent() const { return area_exponent_; }
+
+  /** Collapses standing for less than area \p A (the mesh's squared length units) are priced per area,
+   *  times A^(1 - exponent) so that the two prices meet at A. Matters only for an exponent strictly
+   *  between 0 and 1. Throws std::invalid_argument if negative or not finite. Default 0: none. */
+  void set_area_floor(double A) {
+    if (!(A >= 0.0 && A <= DBL_MAX))
+      throw std::invalid_argument("ModSkinnedQuadricT: the area floor must be finite and not negative, not " +
+                                  std::to_string(A));
+    area_floor_ = A;
+    this->settings_changed();
+  }
+  double area_floor() const { return area_floor_; }
 
   /** Also prices how far each collapse moves vertices from where the input's shading normals agree
    *  (rest-pose normal quadrics, NormalQuadric.hh), at \p w times the geometric error (one radian of normal
@@ -96,7 +121,8 @@ protected:
     s.placement = true;
     s.max_iterations = max_iterations_;
     s.tolerance = tolerance_;
-    s.error_per_area = per_area_;
+    s.area_exponent = area_exponent_;
+    s.area_floor = area_floor_;
     s.normal_weight = normal_weight_;
   }
 
@@ -104,7 +130,8 @@ private:
   double max_err_ = DBL_MAX;
   int max_iterations_ = SolveSettings{}.max_iterations;
   double tolerance_ = SolveSettings{}.tolerance;
-  bool per_area_ = false;
+  double area_exponent_ = 0.0;
+  double area_floor_ = 0.0;
   double normal_weight_ = 0.0;
 };
 

@@ -7,6 +7,9 @@
 
 #include "OpenMeshSkinned/Solver/SkinnedQuadricSolve.hh"
 
+#include <algorithm>
+#include <cmath>
+
 namespace OpenMeshSkinned {
 
 struct SolverSettings : SolveSettings {
@@ -23,12 +26,20 @@ struct SolverSettings : SolveSettings {
   /// Whether a module other than the fold check re-judges DecimaterT's stored verdicts near v1 after each
   /// collapse (SolverClientT::now_refuses; ModDeviationBoundT asks for it).
   bool recheck_stale = false;
-  /// Whether collapses are priced by error / area (ModSkinnedQuadricT::set_error_per_area).
-  bool error_per_area = false;
+  /// Collapses are priced by error / area^area_exponent (ModSkinnedQuadricT::set_area_exponent): 0 is the
+  /// energy itself, 1 a mean squared distance.
+  double area_exponent = 0.0;
+  /// Below this area a collapse is priced per area whatever the exponent (ModSkinnedQuadricT::set_area_floor).
+  double area_floor = 0.0;
 
-  /// The priority of a solved collapse: its error, or its error per area.
+  /// The priority of a solved collapse: its error over a power of the area it stands for.
   double priority(const CollapseResult& r) const {
-    return error_per_area ? (r.area > 0.0 ? r.error / r.area : 0.0) : r.error;
+    if (area_exponent == 0.0) return r.error;
+    if (!(r.area > 0.0)) return 0.0;
+    if (area_exponent == 1.0) return r.error / r.area;
+    // error / area, scaled by max(area, floor)^(1 - exponent): the same as error / area^exponent above the
+    // floor, a constant times the per-area price below it.
+    return r.error / r.area * std::pow(std::max(r.area, area_floor), 1.0 - area_exponent);
   }
 
   /// Whether two settings give the same edge answers (the edge cache survives a change of the others).
