@@ -257,11 +257,11 @@ int main(int argc, char** argv) {
   app.add_flag("--classic-only", g_classic_only, "Only the skinned modules under OpenMesh's DecimaterT (profiling)");
   app.add_flag("--static-only", g_static_only, "Only OpenMesh's static modules under its DecimaterT (profiling)");
   std::vector<std::string> write;
-  app.add_option(
-         "--write", write,
-         "NAME FILE: write a benchmark character as GLB and exit. human (Testwuson subdivided three "
-         "times), human4 (four times: 955,392 triangles), leg, column, wuson8 (Testwuson with its skin diffused "
-         "over 8 bones)")
+  app.add_option("--write", write,
+                 "NAME FILE: write a benchmark character as GLB and exit. human (Testwuson subdivided three "
+                 "times), human1, human2, human4 (once, twice, four times: 14,928, 59,712, 955,392 triangles), leg, "
+                 "column, wuson8 (Testwuson with its skin diffused "
+                 "over 8 bones)")
       ->expected(2);
   CLI11_PARSE(app, argc, argv);
   if (!write.empty()) {
@@ -270,8 +270,8 @@ int main(int argc, char** argv) {
       Mesh m;
       if (name == "human") {
         m = human();
-      } else if (name == "human4") {
-        m = human(4);
+      } else if (name == "human1" || name == "human2" || name == "human4") {
+        m = human(name[5] - '0');
       } else if (name == "leg") {
         m = OpenMeshSkinned::make_bending_cylinder();
       } else if (name == "column") {
