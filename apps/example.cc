@@ -15,7 +15,9 @@
 #include <OpenMeshSkinned/Decimater/ModWeightCapT.hh>
 #include <OpenMeshSkinned/IO/ExportGltf.hh>
 #include <OpenMeshSkinned/IO/Import.hh>
+#include <OpenMeshSkinned/Lod/LodAreaExponent.hh>
 #include <OpenMeshSkinned/Mesh/Procedural.hh>
+#include <OpenMeshSkinned/Mesh/SurfaceArea.hh>
 
 #include <chrono>
 #include <filesystem>
@@ -65,13 +67,17 @@ int main(int argc, char** argv) {
     decimater.add(quadric);
     decimater.add(cap);
     decimater.add(fold);
-    decimater.module(quadric).set_error_per_area(true);  // the tool's pricing: error over the area it stands for
+    const size_t faces_before = mesh.n_faces();
+    const size_t target = std::max<size_t>(4, static_cast<size_t>(ratio * faces_before));
+    // The tool's pricing: the energy over the square root of the area it stands for on small meshes (per area
+    // on large ones), and per area below two of the target's mean triangles, where a sharp feature the LOD
+    // could still show would otherwise be cheap.
+    decimater.module(quadric).set_area_exponent(OpenMeshSkinned::lod_area_exponent({}, mesh.n_vertices()));
+    decimater.module(quadric).set_area_floor(2.0 * OpenMeshSkinned::surface_area(mesh) / double(target));
     decimater.module(cap).set_max_influences(4);
     decimater.module(fold).set_max_angle(90.0);
     if (!decimater.initialize()) throw std::runtime_error("decimater did not initialize");
 
-    const size_t faces_before = mesh.n_faces();
-    const size_t target = std::max<size_t>(4, static_cast<size_t>(ratio * faces_before));
     const auto t0 = std::chrono::steady_clock::now();
     decimater.decimate_to_faces(0, target);
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

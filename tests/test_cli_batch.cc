@@ -91,7 +91,10 @@ TEST(CliBatch, RunsALibraryReportsFailuresInOneLineAndResumes) {
   }
   // The characters are judged in held-out frames; the still mesh has none to be judged in.
   EXPECT_GT(res["wuson"]["lods"][0]["heldout_rms"].get<double>(), 0.0);
-  EXPECT_EQ(res["wuson"]["lods"][0]["triangles"], res["chars/wuson"]["lods"][0]["triangles"]);
+  // The same character as .x and as .glb: the same target; the order the reader gives the vertices in may
+  // end the decimation one border collapse apart.
+  EXPECT_NEAR(res["wuson"]["lods"][0]["triangles"].get<double>(),
+              res["chars/wuson"]["lods"][0]["triangles"].get<double>(), 1.0);
 
   const std::string page = read(d / "out/index.html");
   for (const char* input :

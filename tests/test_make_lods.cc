@@ -102,6 +102,12 @@ TEST(MakeLods, RefusesWithTheCommandLinesMessages) {
   o.pose_clip = "run";
   EXPECT_EQ(message(o), "--pose-clip run: no such clip in the mesh (1 clips)");
   o = quick({0.5});
+  o.area_exponent = 1.5;
+  EXPECT_EQ(message(o), "--error: the area exponent must be in [0, 1] (or -1: by the input's size), got 1.5000");
+  o = quick({0.5});
+  o.area_floor = -1.0;
+  EXPECT_EQ(message(o), "--area-floor must be finite and >= 0");
+  o = quick({0.5});
   o.max_error = 1.0;
   o.max_joints = {2};
   EXPECT_EQ(message(o).rfind("--max-error cannot be combined with --max-joints", 0), 0u);

@@ -1,5 +1,6 @@
 #include "CheckLodOptions.hh"
 
+#include "LodAreaExponent.hh"
 #include "LodMethods.hh"
 #include "LodPoseCount.hh"
 #include "LodPoses.hh"
@@ -36,6 +37,11 @@ void check_lod_options(const LodOptions& o) {
     if (!(v >= 0.0) || !std::isfinite(v))
       throw LodOptionsError(
           "--joint-guard, --max-error, --joint-energy, --anim-error and --normal-weight must be finite and >= 0");
+  if (!(o.area_exponent >= 0.0 && o.area_exponent <= 1.0) && o.area_exponent != kAutoAreaExponent)
+    throw LodOptionsError("--error: the area exponent must be in [0, 1] (or -1: by the input's size), got " +
+                          fixed_number(o.area_exponent, 4));
+  if (!(o.area_floor >= 0.0) || !std::isfinite(o.area_floor))
+    throw LodOptionsError("--area-floor must be finite and >= 0");
   for (int j : o.max_joints)
     if (j < 1) throw LodOptionsError("--max-joints: every value must be at least 1");
   if (o.max_error > 0.0 && (!o.max_joints.empty() || o.joint_energy > 0.0))

@@ -14,6 +14,8 @@
 #include <OpenMeshSkinned/Decimater/ModSkinnedQuadricT.hh>
 #include <OpenMeshSkinned/Decimater/ModWeightCapT.hh>
 #include <OpenMeshSkinned/Eval/SurfaceDistance.hh>
+#include <OpenMeshSkinned/Lod/LodAreaExponent.hh>
+#include <OpenMeshSkinned/Mesh/SurfaceArea.hh>
 #include <OpenMeshSkinned/Skin/SkinProperties.hh>
 
 #include <OpenMesh/Tools/Decimater/ModNormalFlippingT.hh>
@@ -131,7 +133,7 @@ size_t fold_fallbacks(Decimater& dec, Handles& h) {
 
 // The method's modules, then the ones the options add, set up.
 void add_modules(Decimater& dec, Handles& h, const MethodModules& m, const LodOptions& opt, const std::string& method,
-                 const LodCallbacks& callbacks, double diagonal) {
+                 const LodCallbacks& callbacks, double diagonal, double area_exponent, double area_floor) {
   m.add(dec, h);
   // The frame methods' skins were capped up front: the cap module would only bring in the skinned solver.
   if (!h.frame_fold.is_valid() && !h.frames.is_valid()) {
@@ -143,7 +145,8 @@ void add_modules(Decimater& dec, Handles& h, const MethodModules& m, const LodOp
     dec.module(h.guard).set_tau(opt.joint_guard);
   }
   if (h.skinned.is_valid()) {
-    dec.module(h.skinned).set_error_per_area(!opt.energy_error);
+    dec.module(h.skinned).set_area_exponent(area_exponent);
+    dec.module(h.skinned).set_area_floor(area_floor);
     dec.module(h.skinned).set_normal_weight(opt.normal_weight);
   }
   // The bound needs the shared solver's placement and poses: the frame methods place vertices themselves.
@@ -275,7 +278,9 @@ std::vector<LodLevel> decimate_chain(const Mesh& input, const std::vector<Pose>&
   std::optional<Decimater> dec(std::in_place, mesh);
   Handles h;
   const double diagonal = bbox_diagonal(mesh);
-  add_modules(*dec, h, *it, opt, method, callbacks, diagonal);
+  // In the coarsest level's mean triangles: a feature that level could still show keeps the per-area price.
+  const double area_floor = opt.area_floor * surface_area(mesh) / double(std::max<size_t>(targets.back(), 1));
+  add_modules(*dec, h, *it, opt, method, callbacks, diagonal, lod_area_exponent(opt, mesh.n_vertices()), area_floor);
   if (!dec->initialize()) throw std::runtime_error("the decimater did not initialize");
   Progress progress(callbacks, n_vertices_in - targets.back() / 2);
   dec->set_observer(&progress);

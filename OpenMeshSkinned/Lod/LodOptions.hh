@@ -39,8 +39,14 @@ struct LodOptions {
   bool per_vertex_error = false;  ///< and keep each LOD vertex's worst held-out error (LodReport::vertex_error)
   bool refit = true;              ///< final fit of the LODs' rest positions in the example poses
   bool strict_fold = false;       ///< never relax the 90-degree fold-over limit to reach a target
-  bool energy_error = false;      ///< the skinned priority as the paper's quartic energy, not per area
-  double joint_guard = 0.0;       ///< Savoye-Meyer joint-region guard TAU (0: off)
+  /// The skinned priority is energy / area^area_exponent (ModSkinnedQuadricT::set_area_exponent): 0 is the
+  /// paper's quartic energy, 1 a mean squared distance; -1 (kAutoAreaExponent): by the input's size,
+  /// lod_area_exponent().
+  double area_exponent = -1.0;
+  /// Below this many of the coarsest level's mean triangles a collapse is priced per area
+  /// (ModSkinnedQuadricT::set_area_floor; 0: no floor).
+  double area_floor = 2.0;
+  double joint_guard = 0.0;  ///< Savoye-Meyer joint-region guard TAU (0: off)
   /// weight of the rest-pose normal quadrics against the geometry (ModSkinnedQuadricT::set_normal_weight; 0: off)
   double normal_weight = 0.03;
   double max_error = 0.0;       ///< bound on the input's vertices' distance to the LOD, % of the diagonal (0: none)

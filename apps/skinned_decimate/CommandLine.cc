@@ -1,11 +1,14 @@
 #include "CommandLine.hh"
 
+#include <OpenMeshSkinned/Lod/LodAreaExponent.hh>
 #include <OpenMeshSkinned/Lod/LodMethods.hh>
 #include <OpenMeshSkinned/Lod/LodOptions.hh>
 #include <OpenMeshSkinned/Lod/LodPoseCount.hh>
 #include <OpenMeshSkinned/Lod/LodPoses.hh>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 
 namespace skinned_decimate {
 
@@ -68,6 +71,18 @@ void declare_run_options(CLI::App& app, Options& opt, OptionWords& c) {
                  "rendered by headless Chromium");
 }
 
+// --error's word or number as the area exponent (its range is checked with the other LOD options); NaN for
+// anything else.
+double area_exponent_of(const std::string& s) {
+  if (s == "auto") return OpenMeshSkinned::kAutoAreaExponent;
+  if (s == "balanced") return 0.5;
+  if (s == "per-area") return 1.0;
+  if (s == "energy") return 0.0;
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  return !s.empty() && *end == '\0' ? v : std::nan("");
+}
+
 // The layers beyond the mesh (skeleton and motion LoD), the worst-case bound, frame animations, pricing.
 void declare_layer_options(CLI::App& app, Options& opt, OptionWords& c) {
   app.add_option("--joint-guard", opt.joint_guard,
@@ -123,10 +138,20 @@ void declare_layer_options(CLI::App& app, Options& opt, OptionWords& c) {
                  "Write the input cut into near-rigid parts (Lee et al.) as OUT.glb, one colour per part, and "
                  "the parts of its faces as OUT.json; without -o nothing is decimated");
   app.add_option("--error", c.error_measure,
-                 "How the skinned method prices a collapse: per-area (its error over the area it stands for, a "
-                 "mean squared distance; default: keeps small sharp features, lowers the worst case) or energy "
-                 "(Landreneau & Schaefer's quartic energy as it is)")
-      ->check(CLI::IsMember({"per-area", "energy"}));
+                 "How the skinned method prices a collapse: Landreneau & Schaefer's energy over a power of the "
+                 "area it stands for. balanced (over its square root), per-area (over the area, a mean squared "
+                 "distance), energy (the paper's energy as it is), the power as a number in [0, 1], or auto "
+                 "(default: balanced up to 20000 vertices, where it measured the lower RMS, per-area above)")
+      ->check(CLI::Validator(
+          [](std::string& s) -> std::string {
+            return std::isnan(area_exponent_of(s)) ? "must be auto, balanced, per-area, energy or a number in [0, 1]"
+                                                   : "";
+          },
+          "MEASURE"));
+  app.add_option("--area-floor", opt.area_floor,
+                 "Collapses standing for less than N of the coarsest LOD's mean triangles are priced per area "
+                 "whatever --error says, so a small sharp feature stays as dear as its distance (0: no floor; "
+                 "default 2)");
   app.add_flag("!--no-refit", opt.refit,
                "Skip the final fit (by default every LOD vertex's rest position is refitted against the original "
                "surface in all example poses: sparse least squares, three rounds; on inputs of up to 20000 "
@@ -147,7 +172,7 @@ void finish_options(const CLI::App& app, const OptionWords& c, Options& opt) {
   opt.html_beside = c.assets == "beside";
   opt.anim_frames = c.anim_method == "frames";
   opt.pose_select = c.pose_select;
-  opt.energy_error = c.error_measure == "energy";
+  opt.area_exponent = area_exponent_of(c.error_measure);
   opt.method_given = app.count("--method") > 0;
   opt.poses_given = app.count("--poses") > 0;
   opt.ratio_given = app.count("--ratio") > 0;

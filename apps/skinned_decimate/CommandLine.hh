@@ -13,7 +13,7 @@ struct OptionWords {
   std::string assets = "embed";
   std::string anim_method = "channels";
   std::string pose_select = "even";
-  std::string error_measure = "per-area";
+  std::string error_measure = "auto";
 };
 
 /// Declares every option of a single run on \p app, writing into \p opt and \p c when parsed.

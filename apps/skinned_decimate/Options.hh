@@ -48,7 +48,8 @@ struct Options {
   std::string pose_select = "even";  // --pose-select even|motion|spread|ga
   std::string segment;               // --segment OUT.glb: near-rigid parts, coloured, and OUT.json
   bool refit = true;                 // final fit of the LOD's rest positions in the example poses (--no-refit: off)
-  bool energy_error = false;  // --error energy: the paper's quartic energy as the skinned priority (default: per area)
+  double area_exponent = -1.0;  // --error: the skinned priority is energy / area^this (energy 0, per-area 1; auto -1)
+  double area_floor = 2.0;      // --area-floor N: per area below N of the coarsest level's mean triangles
 };
 
 struct UsageError : std::runtime_error {

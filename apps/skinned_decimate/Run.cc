@@ -56,7 +56,8 @@ LodOptions lod_options(const Options& opt, const std::string& method) {
   l.evaluate = opt.evaluate;
   l.refit = opt.refit;
   l.strict_fold = opt.strict_fold;
-  l.energy_error = opt.energy_error;
+  l.area_exponent = opt.area_exponent;
+  l.area_floor = opt.area_floor;
   l.joint_guard = opt.joint_guard;
   l.normal_weight = opt.normal_weight;
   l.max_error = opt.max_error;

@@ -64,8 +64,13 @@ const std::vector<Field>& fields() {
             &LodOptions::refit),
       field("strict_fold", "bool", "never relax the 90-degree fold-over limit to reach a target",
             &LodOptions::strict_fold),
-      field("energy_error", "bool", "the skinned priority as the paper's quartic energy, not per area",
-            &LodOptions::energy_error),
+      field("area_exponent", "float",
+            "the skinned priority is energy / area**area_exponent, in [0, 1]: 0 the paper's quartic energy, 1 per "
+            "area (a mean squared distance); -1: 0.5 up to 20,000 vertices, 1 above",
+            &LodOptions::area_exponent),
+      field("area_floor", "float",
+            "below this many of the coarsest level's mean triangles a collapse is priced per area (0: no floor)",
+            &LodOptions::area_floor),
       field("joint_guard", "float", "Savoye-Meyer joint-region guard TAU (0: off)", &LodOptions::joint_guard),
       field("normal_weight", "float", "weight of the shading-normal term in the collapse cost (0: geometry only)",
             &LodOptions::normal_weight),
@@ -159,7 +164,8 @@ std::vector<std::string> tool_arguments(const LodOptions& o) {
   flag(!o.evaluate, "--no-eval");
   flag(!o.refit, "--no-refit");
   flag(o.strict_fold, "--strict-fold");
-  value(o.energy_error, "--error", "energy");
+  value(o.area_exponent != d.area_exponent, "--error", number(o.area_exponent));
+  value(o.area_floor != d.area_floor, "--area-floor", number(o.area_floor));
   value(o.joint_guard != d.joint_guard, "--joint-guard", number(o.joint_guard));
   value(o.normal_weight != d.normal_weight, "--normal-weight", number(o.normal_weight));
   value(o.max_error != d.max_error, "--max-error", number(o.max_error));

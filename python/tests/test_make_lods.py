@@ -66,6 +66,18 @@ def test_a_lod_saved_from_python_is_the_command_line_s_byte_for_byte(wuson, tmp_
         assert r.returncode == 0, r.stdout + r.stderr
 
 
+def test_the_pricing_words_are_the_area_exponent_s_values(wuson, tmp_path):
+    # per-area is the exponent 1; a batch hands the tool the keywords as its own options.
+    args = ["--ratio", "0.5", "--poses", "3", "--error", "per-area", "--area-floor", "0", "--quiet"]
+    status, _, err = cli(WUSON, "-o", tmp_path / "cli.glb", *args)
+    assert status == 0, err
+    oms.save(oms.make_lods(wuson, ratios=[0.5], poses=3, area_exponent=1.0, area_floor=0.0), tmp_path / "py.glb")
+    assert filecmp.cmp(tmp_path / "cli.glb", tmp_path / "py.glb", shallow=False)
+    assert oms._core._tool_arguments(area_exponent=1.0, area_floor=0.0) == ["--error", "1.0", "--area-floor", "0.0"]
+    oms.save(oms.make_lods(wuson, ratios=[0.5], poses=3), tmp_path / "default.glb")
+    assert not filecmp.cmp(tmp_path / "cli.glb", tmp_path / "default.glb", shallow=False)
+
+
 def test_poses_spread_over_the_motion_are_the_command_line_s(wuson, tmp_path):
     args = ["--ratio", "0.5", "--poses", "3", "--pose-select", "spread"]
     status, out, err = cli(WUSON, "-o", tmp_path / "cli.glb", *args)
@@ -126,6 +138,8 @@ def test_save_refuses_its_input_and_a_bad_extension_with_nothing_written(wuson_l
         (["--faces", "100000000"], {"faces": [100000000]}),
         (["--poses", "-1"], {"poses": -1}),
         (["--pose-clip", "nope"], {"pose_clip": "nope"}),
+        (["--error", "1.5"], {"area_exponent": 1.5}),
+        (["--area-floor", "-1"], {"area_floor": -1.0}),
     ],
 )
 def test_bad_options_raise_the_command_line_s_message(wuson, tmp_path, cli_args, options):

@@ -1,0 +1,85 @@
+// The tool's pricing of skinned collapses (LodOptions::area_exponent, area_floor) judged on Testwuson in the
+// frames make_lods() holds out, the way a user sees the LODs.
+#include "helpers.hh"
+
+#include <OpenMeshSkinned/IO/Import.hh>
+#include <OpenMeshSkinned/Lod/LodAreaExponent.hh>
+#include <OpenMeshSkinned/Lod/MakeLods.hh>
+#include <OpenMeshSkinned/Mesh/Procedural.hh>
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <vector>
+
+using namespace OpenMeshSkinned;
+
+namespace {
+
+LodReport lod(double ratio, double exponent, double floor) {
+  static const SkinnedMesh wuson = [] {
+    SkinnedMesh m;
+    import_skinned(omsk_test::model("X/Testwuson.X"), m);
+    return m;
+  }();
+  LodOptions o;
+  o.ratios = {ratio};
+  o.area_exponent = exponent;
+  o.area_floor = floor;
+  const LodReport r = make_lods(wuson, o).levels.at(0).report;
+  std::printf("%.0f%%, exponent %.2f, floor %.1f: held-out RMS %.4f%%, Hausdorff %.4f%%\n", 100 * ratio, exponent,
+              floor, r.rms, r.hausdorff);
+  return r;
+}
+
+}  // namespace
+
+TEST(AreaPricing, AutoOnTestwusonIsTheSquareRoot) {
+  const LodReport automatic = lod(0.5, kAutoAreaExponent, 2.0), balanced = lod(0.5, 0.5, 2.0);
+  EXPECT_EQ(automatic.rms, balanced.rms);
+  EXPECT_EQ(automatic.hausdorff, balanced.hausdorff);
+}
+
+// Per area, a broad shallow bend costs as much as a narrow one of the same depth though it moves far more of
+// the surface; over the square root of the area it costs more, and the surface as a whole stays closer.
+TEST(AreaPricing, TheSquareRootOfTheAreaLowersTheRmsOfPerArea) {
+  const LodReport balanced = lod(0.5, 0.5, 2.0), per_area = lod(0.5, 1.0, 0.0);
+  EXPECT_LT(balanced.rms, 0.9 * per_area.rms);
+}
+
+// Without the floor a horn tip (small faces, far from the rest) is cheap again at the coarse end; below two of
+// the coarsest level's triangles it keeps the per-area price.
+TEST(AreaPricing, TheFloorKeepsTheWorstCaseOfAFeatureTheCoarsestLevelCanStillShow) {
+  const LodReport floored = lod(0.1, 0.5, 2.0), bare = lod(0.1, 0.5, 0.0);
+  EXPECT_LT(floored.hausdorff, 0.95 * bare.hausdorff);
+}
+
+// Left to the input, the power is the square root up to kSmallMeshVertices and per area above (where the
+// square root measured the higher RMS): the LODs are those of the power asked for explicitly.
+TEST(AreaPricing, AutoIsTheSquareRootOnSmallMeshesAndPerAreaOnLargeOnes) {
+  LodOptions o;
+  EXPECT_EQ(o.area_exponent, kAutoAreaExponent);
+  EXPECT_EQ(lod_area_exponent(o, kSmallMeshVertices), 0.5);
+  EXPECT_EQ(lod_area_exponent(o, kSmallMeshVertices + 1), 1.0);
+  o.area_exponent = 0.0;
+  EXPECT_EQ(lod_area_exponent(o, 10), 0.0);
+
+  const SkinnedMesh leg = make_bending_cylinder(128, 160);  // 20,480 vertices
+  ASSERT_GT(leg.n_vertices(), kSmallMeshVertices);
+  auto points = [&](double exponent) {
+    LodOptions q;
+    q.ratios = {0.02};
+    q.poses = 2;
+    q.evaluate = q.refit = false;
+    q.area_exponent = exponent;
+    const LodChain chain = make_lods(leg, q);
+    const SkinnedMesh& m = chain.levels.at(0).mesh;
+    std::vector<float> p;
+    for (auto vh : m.vertices())
+      for (int k = 0; k < 3; ++k) p.push_back(m.point(vh)[k]);
+    return p;
+  };
+  const auto automatic = points(kAutoAreaExponent);
+  EXPECT_EQ(automatic, points(1.0));
+  EXPECT_NE(automatic, points(0.5));
+}
