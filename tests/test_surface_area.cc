@@ -27,7 +27,8 @@ TEST(SurfaceArea, SumsTheLiveTrianglesAndLeavesDeletedOnesOut) {
 TEST(SurfaceArea, FansAPolygonFromItsFirstVertex) {
   OpenMesh::PolyMesh_ArrayKernelT<> poly;
   std::vector<OpenMesh::VertexHandle> ring;
-  for (auto p : {OpenMesh::Vec3f(0, 0, 0), OpenMesh::Vec3f(2, 0, 0), OpenMesh::Vec3f(2, 3, 0), OpenMesh::Vec3f(0, 3, 0)})
+  for (auto p :
+       {OpenMesh::Vec3f(0, 0, 0), OpenMesh::Vec3f(2, 0, 0), OpenMesh::Vec3f(2, 3, 0), OpenMesh::Vec3f(0, 3, 0)})
     ring.push_back(poly.add_vertex(p));
   poly.add_face(ring);
   EXPECT_DOUBLE_EQ(OpenMeshSkinned::surface_area(poly), 6.0);
