@@ -25,9 +25,9 @@ namespace OpenMeshSkinned {
  *  between the two, and set_area_floor(A) keeps the per-area price (scaled to meet the other at A) for
  *  collapses standing for less than A: features smaller than that stay as dear as per area. The command-line
  *  tool uses a = 0.5 on small inputs and 1 on large ones (Lod/LodAreaExponent.hh), with a floor of two of the
- *  coarsest level's mean triangles (bench/README.md, "Defaults chosen by measurement"). Under DecimaterT, whose
- * stale-verdict handling locks and defers vertices, per area measured worse at 50% and 25% (the same section): use the
- * area pricing with LazyDecimaterT.
+ *  coarsest level's mean triangles (bench/README.md, "Defaults chosen by measurement"). Under DecimaterT,
+ *  whose stale-verdict handling locks and defers vertices, per area measured worse at 50% and 25% (the same
+ *  section): use the area pricing with LazyDecimaterT.
  *
  *  When a collapse happens, the surviving vertex moves to the optimal rest position and takes the
  *  optimal weights, its corner UVs (per-halfedge texcoords, when the mesh has them) are re-interpolated
