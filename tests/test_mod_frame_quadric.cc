@@ -70,3 +70,59 @@ TEST(ModFrameQuadric, MaxErrorStopsIt) {
   EXPECT_GT(lod.n_faces(), 500u);
   EXPECT_LT(lod.n_faces(), mesh.n_faces());
 }
+
+TEST(ModFrameQuadric, AreaExponentAndFloorAreChecked) {
+  Mesh mesh = frame_leg();
+  OpenMesh::Decimater::DecimaterT<Mesh> dec(mesh);
+  ModFrameQuadricT<Mesh>::Handle hq;
+  dec.add(hq);
+  auto& m = dec.module(hq);
+  EXPECT_EQ(m.area_exponent(), 0.0);
+  for (double bad : {-0.01, 1.01, std::nan("")}) EXPECT_THROW(m.set_area_exponent(bad), std::invalid_argument);
+  for (double bad : {-1.0, HUGE_VAL, std::nan("")}) EXPECT_THROW(m.set_area_floor(bad), std::invalid_argument);
+  m.set_area_exponent(0.5);
+  m.set_area_floor(4.0);
+  EXPECT_EQ(m.area_exponent(), 0.5);
+  EXPECT_EQ(m.area_floor(), 4.0);
+}
+
+// The area a collapse stands for is that of the endpoints' faces in the example frames, averaged: per area
+// the energy is divided by it, over the square root by its root.
+TEST(ModFrameQuadric, AreaExponentDividesTheEnergyByTheFramesMeanArea) {
+  Mesh mesh = frame_leg();
+  OpenMesh::Decimater::DecimaterT<Mesh> dec(mesh);
+  ModFrameQuadricT<Mesh>::Handle hq;
+  dec.add(hq);
+  ASSERT_TRUE(dec.initialize());
+  auto& m = dec.module(hq);
+  const std::vector<FramePoints> frames = example_frame_points(mesh);
+  size_t checked = 0;
+  for (auto heh : mesh.halfedges()) {
+    const auto v0 = mesh.from_vertex_handle(heh), v1 = mesh.to_vertex_handle(heh);
+    bool inner = true;
+    for (auto v : {v0, v1})
+      for (auto u : mesh.vv_range(v)) inner &= !mesh.is_boundary(u);
+    if (!inner || checked == 20) continue;
+    OpenMesh::Decimater::CollapseInfoT<Mesh> ci(mesh, heh);
+    m.set_area_exponent(0.0);
+    const double energy = m.collapse_priority(ci);
+    if (!(energy > 0.0)) continue;
+    m.set_area_exponent(1.0);
+    const double per_area = m.collapse_priority(ci);
+    m.set_area_exponent(0.5);
+    const double balanced = m.collapse_priority(ci);
+    double area = 0.0;
+    for (const FramePoints& p : frames)
+      for (auto v : {v0, v1})
+        for (auto fh : mesh.vf_range(v)) {
+          auto fv = mesh.fv_iter(fh);
+          const Eigen::Vector3d a = p[(*fv++).idx()], b = p[(*fv++).idx()], c = p[(*fv).idx()];
+          area += 0.5 * (b - a).cross(c - a).norm();
+        }
+    area /= double(frames.size());
+    EXPECT_NEAR(per_area, energy / area, 1e-5 * per_area);
+    EXPECT_NEAR(balanced, energy / std::sqrt(area), 1e-5 * balanced);
+    ++checked;
+  }
+  EXPECT_EQ(checked, 20u);
+}

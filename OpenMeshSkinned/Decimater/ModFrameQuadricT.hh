@@ -6,6 +6,7 @@
 #include "OpenMeshSkinned/Collapse/MorphTransferT.hh"
 #include "OpenMeshSkinned/Collapse/UvTransferT.hh"
 #include "OpenMeshSkinned/Deform/ExampleFrames.hh"
+#include "OpenMeshSkinned/Solver/AreaPrice.hh"
 #include "OpenMeshSkinned/Solver/VertexQuadrics.hh"
 
 #include <algorithm>
@@ -53,8 +54,29 @@ public:
 
   explicit ModFrameQuadricT(MeshT& mesh) : Base(mesh, false), uv_(mesh), morph_(mesh) {}
 
+  /// Collapses whose priority exceeds \p err (the energy, or energy over a power of the area with
+  /// set_area_exponent()) are refused. Default: none.
   void set_max_err(double err) { max_err_ = err; }
   double max_err() const { return max_err_; }
+
+  /** Prices collapses by energy / area^\p a, the area being what the endpoints' quadrics stand for (their
+   *  summed planes' trace, averaged over the frames), as ModSkinnedQuadricT::set_area_exponent() does: 0 is
+   *  the energy (the default), 1 a mean squared distance. Throws std::invalid_argument outside [0, 1]. */
+  void set_area_exponent(double a) {
+    check_area_exponent("ModFrameQuadricT", a);
+    area_exponent_ = a;
+  }
+  double area_exponent() const { return area_exponent_; }
+
+  /** Collapses standing for less than area \p A are priced per area, scaled so that the two prices meet at
+   *  A (ModSkinnedQuadricT::set_area_floor()). Throws std::invalid_argument if negative or not finite.
+   *  Default 0: none. */
+  void set_area_floor(double A) {
+    check_area_floor("ModFrameQuadricT", A);
+    area_floor_ = A;
+  }
+  double area_floor() const { return area_floor_; }
+
   void set_placement(bool on) { placement_ = on; }
   bool placement() const { return placement_; }
   void set_max_fold_angle(double deg) { min_cos_ = std::cos(deg * M_PI / 180.0); }
@@ -80,7 +102,7 @@ public:
 
   float collapse_priority(const CollapseInfo& ci) override {
     Placement pl;
-    const double e = std::max(0.0, place(ci, pl));
+    const double e = price(std::max(0.0, place(ci, pl)));
     if (e > max_err_ * Base::error_tolerance_factor_ || folds(ci, pl)) return float(Base::ILLEGAL_COLLAPSE);
     return float(std::min<double>(e, FLT_MAX / 2));
   }
@@ -121,6 +143,14 @@ private:
     Eigen::Vector3d rest;
     std::vector<Eigen::Vector3d> trajectory;
   };
+
+  // The priority of an edge whose summed quadrics (sum_) have the least energy \p e.
+  double price(double e) const {
+    if (area_exponent_ == 0.0) return e;
+    double area = 0.0;
+    for (size_t f = 0; f < P_; ++f) area += sum_[f].A().trace();
+    return area_price(e, area / double(std::max<size_t>(P_, 1)), area_exponent_, area_floor_);
+  }
 
   // Summed quadrics of the edge's endpoints, per pose.
   double energy(const std::vector<PoseQuadric>& q, const std::vector<Eigen::Vector3d>& traj) const {
@@ -246,6 +276,7 @@ private:
   }
 
   double max_err_ = DBL_MAX;
+  double area_exponent_ = 0.0, area_floor_ = 0.0;
   bool placement_ = true;
   double min_cos_ = 0.0;
   std::vector<FramePoints> frames_;

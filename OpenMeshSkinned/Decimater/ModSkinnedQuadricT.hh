@@ -76,8 +76,7 @@ public:
   /** Prices collapses by energy / area^\p a: 0 is the paper's energy (the default), 1 the mean squared
    *  distance of set_error_per_area(true). Throws std::invalid_argument outside [0, 1]. */
   void set_area_exponent(double a) {
-    if (!(a >= 0.0 && a <= 1.0))
-      throw std::invalid_argument("ModSkinnedQuadricT: the area exponent must be in [0, 1], not " + std::to_string(a));
+    check_area_exponent("ModSkinnedQuadricT", a);
     area_exponent_ = a;
     this->settings_changed();
   }
@@ -87,9 +86,7 @@ public:
    *  times A^(1 - exponent) so that the two prices meet at A. Matters only for an exponent strictly
    *  between 0 and 1. Throws std::invalid_argument if negative or not finite. Default 0: none. */
   void set_area_floor(double A) {
-    if (!(A >= 0.0 && A <= DBL_MAX))
-      throw std::invalid_argument("ModSkinnedQuadricT: the area floor must be finite and not negative, not " +
-                                  std::to_string(A));
+    check_area_floor("ModSkinnedQuadricT", A);
     area_floor_ = A;
     this->settings_changed();
   }

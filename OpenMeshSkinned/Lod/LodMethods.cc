@@ -144,6 +144,10 @@ void add_modules(Decimater& dec, Handles& h, const MethodModules& m, const LodOp
     dec.add(h.guard);
     dec.module(h.guard).set_tau(opt.joint_guard);
   }
+  if (h.frames.is_valid()) {
+    dec.module(h.frames).set_area_exponent(area_exponent);
+    dec.module(h.frames).set_area_floor(area_floor);
+  }
   if (h.skinned.is_valid()) {
     dec.module(h.skinned).set_area_exponent(area_exponent);
     dec.module(h.skinned).set_area_floor(area_floor);
@@ -280,7 +284,11 @@ std::vector<LodLevel> decimate_chain(const Mesh& input, const std::vector<Pose>&
   const double diagonal = bbox_diagonal(mesh);
   // In the coarsest level's mean triangles: a feature that level could still show keeps the per-area price.
   const double area_floor = opt.area_floor * surface_area(mesh) / double(std::max<size_t>(targets.back(), 1));
-  add_modules(*dec, h, *it, opt, method, callbacks, diagonal, lod_area_exponent(opt, mesh.n_vertices()), area_floor);
+  const double area_exponent =
+      method == "frames"
+          ? lod_frames_area_exponent(opt, double(targets.back()) / double(std::max<size_t>(mesh.n_faces(), 1)))
+          : lod_area_exponent(opt, mesh.n_vertices());
+  add_modules(*dec, h, *it, opt, method, callbacks, diagonal, area_exponent, area_floor);
   if (!dec->initialize()) throw std::runtime_error("the decimater did not initialize");
   Progress progress(callbacks, n_vertices_in - targets.back() / 2);
   dec->set_observer(&progress);

@@ -39,12 +39,12 @@ struct LodOptions {
   bool per_vertex_error = false;  ///< and keep each LOD vertex's worst held-out error (LodReport::vertex_error)
   bool refit = true;              ///< final fit of the LODs' rest positions in the example poses
   bool strict_fold = false;       ///< never relax the 90-degree fold-over limit to reach a target
-  /// The skinned priority is energy / area^area_exponent (ModSkinnedQuadricT::set_area_exponent): 0 is the
-  /// paper's quartic energy, 1 a mean squared distance; -1 (kAutoAreaExponent): by the input's size,
-  /// lod_area_exponent().
+  /// The skinned and frames priorities are energy / area^area_exponent (ModSkinnedQuadricT::set_area_exponent,
+  /// ModFrameQuadricT::set_area_exponent): 0 is the energy, 1 a mean squared distance; -1 (kAutoAreaExponent):
+  /// by the input, lod_area_exponent() and lod_frames_area_exponent().
   double area_exponent = -1.0;
   /// Below this many of the coarsest level's mean triangles a collapse is priced per area
-  /// (ModSkinnedQuadricT::set_area_floor; 0: no floor).
+  /// (ModSkinnedQuadricT::set_area_floor, ModFrameQuadricT::set_area_floor; 0: no floor).
   double area_floor = 2.0;
   double joint_guard = 0.0;  ///< Savoye-Meyer joint-region guard TAU (0: off)
   /// weight of the rest-pose normal quadrics against the geometry (ModSkinnedQuadricT::set_normal_weight; 0: off)

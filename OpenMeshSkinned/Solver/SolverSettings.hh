@@ -5,6 +5,7 @@
  *  its contribution, never another module's.
  */
 
+#include "OpenMeshSkinned/Solver/AreaPrice.hh"
 #include "OpenMeshSkinned/Solver/SkinnedQuadricSolve.hh"
 
 #include <algorithm>
@@ -33,14 +34,7 @@ struct SolverSettings : SolveSettings {
   double area_floor = 0.0;
 
   /// The priority of a solved collapse: its error over a power of the area it stands for.
-  double priority(const CollapseResult& r) const {
-    if (area_exponent == 0.0) return r.error;
-    if (!(r.area > 0.0)) return 0.0;
-    if (area_exponent == 1.0) return r.error / r.area;
-    // error / area, scaled by max(area, floor)^(1 - exponent): the same as error / area^exponent above the
-    // floor, a constant times the per-area price below it.
-    return r.error / r.area * std::pow(std::max(r.area, area_floor), 1.0 - area_exponent);
-  }
+  double priority(const CollapseResult& r) const { return area_price(r.error, r.area, area_exponent, area_floor); }
 
   /// Whether two settings give the same edge answers (the edge cache survives a change of the others).
   bool same_answers(const SolverSettings& o) const {

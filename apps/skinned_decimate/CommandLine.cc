@@ -138,10 +138,11 @@ void declare_layer_options(CLI::App& app, Options& opt, OptionWords& c) {
                  "Write the input cut into near-rigid parts (Lee et al.) as OUT.glb, one colour per part, and "
                  "the parts of its faces as OUT.json; without -o nothing is decimated");
   app.add_option("--error", c.error_measure,
-                 "How the skinned method prices a collapse: Landreneau & Schaefer's energy over a power of the "
-                 "area it stands for. balanced (over its square root), per-area (over the area, a mean squared "
-                 "distance), energy (the paper's energy as it is), the power as a number in [0, 1], or auto "
-                 "(default: balanced up to 20000 vertices, where it measured the lower RMS, per-area above)")
+                 "How the skinned and frames methods price a collapse: its energy over a power of the area it "
+                 "stands for. balanced (over its square root), per-area (over the area, a mean squared "
+                 "distance), energy (the energy as it is), the power as a number in [0, 1], or auto (default: "
+                 "skinned, balanced up to 20000 vertices, where it measured the lower RMS, per-area above; "
+                 "frames, 0.25 when the coarsest LOD keeps at most half of the triangles, energy otherwise)")
       ->check(CLI::Validator(
           [](std::string& s) -> std::string {
             return std::isnan(area_exponent_of(s)) ? "must be auto, balanced, per-area, energy or a number in [0, 1]"

@@ -48,8 +48,8 @@ struct Options {
   std::string pose_select = "even";  // --pose-select even|motion|spread|ga
   std::string segment;               // --segment OUT.glb: near-rigid parts, coloured, and OUT.json
   bool refit = true;                 // final fit of the LOD's rest positions in the example poses (--no-refit: off)
-  double area_exponent = -1.0;  // --error: the skinned priority is energy / area^this (energy 0, per-area 1; auto -1)
-  double area_floor = 2.0;      // --area-floor N: per area below N of the coarsest level's mean triangles
+  double area_exponent = -1.0;       // --error: skinned and frames price energy / area^this (per-area 1; auto -1)
+  double area_floor = 2.0;           // --area-floor N: per area below N of the coarsest level's mean triangles
 };
 
 struct UsageError : std::runtime_error {

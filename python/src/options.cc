@@ -65,8 +65,9 @@ const std::vector<Field>& fields() {
       field("strict_fold", "bool", "never relax the 90-degree fold-over limit to reach a target",
             &LodOptions::strict_fold),
       field("area_exponent", "float",
-            "the skinned priority is energy / area**area_exponent, in [0, 1]: 0 the paper's quartic energy, 1 per "
-            "area (a mean squared distance); -1: 0.5 up to 20,000 vertices, 1 above",
+            "the skinned and frames priorities are energy / area**area_exponent, in [0, 1]: 0 the energy, 1 per "
+            "area (a mean squared distance); -1: skinned 0.5 up to 20,000 vertices, 1 above; frames 0.25 when "
+            "the coarsest level keeps at most half of the triangles, 0 otherwise",
             &LodOptions::area_exponent),
       field("area_floor", "float",
             "below this many of the coarsest level's mean triangles a collapse is priced per area (0: no floor)",
