@@ -1,6 +1,7 @@
 #include "helpers.hh"
 
 #include <OpenMeshSkinned/Mesh/ClosestPoint.hh>
+#include <OpenMeshSkinned/Mesh/LoopSubdivision.hh>
 #include <OpenMeshSkinned/Mesh/Procedural.hh>
 
 #include <algorithm>
@@ -109,4 +110,50 @@ TEST(SurfaceDistance, HintsFromTheLastFrameGiveTheSameNumbers) {
     EXPECT_TRUE(std::all_of(original_hints.begin(), original_hints.end(),
                             [&](int h) { return h >= 0 && size_t(h) < lod.n_faces(); }));
   }
+}
+
+// A dense original (Testwuson subdivided once: 7,440 vertices) with only some of its vertices counted toward
+// the RMS: the RMS stays close to the one every vertex gives, and the Hausdorff distance is the same to the
+// bit though most vertices were never searched.
+TEST(SurfaceDistance, CountingSomeVerticesKeepsTheHausdorffExactAndTheRmsClose) {
+  const Mesh original = loop_subdivide(omsk_test::load_character("X/Testwuson.X", 6));
+  Mesh lod = original;
+  omsk_test::decimate(lod, 0.02);
+  std::vector<int> all_hints, all_lod_hints, some_hints, some_lod_hints, few_hints, few_lod_hints;
+  bool worst_is_a_vertex = false;
+  for (double t : {0.1, 0.3, 0.55, 0.8}) {
+    const Pose p = sample_pose(skeleton(original), clips(original)[0], t * clips(original)[0].duration);
+    const MeasuredSurface a(posed_soup(original, p), 3000, 1), b(posed_soup(lod, p), 3000, 2);
+    const SurfaceDistance all = surface_distance(a, b, all_hints, all_lod_hints);
+    const SurfaceDistance some = surface_distance(a, b, some_hints, some_lod_hints, 1500);
+    const SurfaceDistance few = surface_distance(a, b, few_hints, few_lod_hints, 60);
+    EXPECT_EQ(surface_distance(a, b).hausdorff, all.hausdorff);
+    EXPECT_EQ(some.hausdorff, all.hausdorff) << "t " << t;
+    EXPECT_EQ(few.hausdorff, all.hausdorff) << "t " << t;
+    EXPECT_NEAR(some.rms, all.rms, 0.02 * all.rms) << "t " << t;
+    EXPECT_EQ(some.samples, all.samples);  // the measured vertices stand for the others
+    // Only counted vertices are sure to have been searched; the others keep their hints from whenever they were.
+    EXPECT_TRUE(std::all_of(few_hints.begin(), few_hints.end(), [&](int h) { return h < int(lod.n_faces()); }));
+    // The test means something where the worst sample is one of the original's vertices (of which only
+    // one in 124 counts): then only the bounded search found it.
+    double worst_vertex = 0.0;
+    for (const auto& q : posed_soup(original, p).points) worst_vertex = std::max(worst_vertex, b.distance(q));
+    worst_is_a_vertex |= worst_vertex == all.hausdorff;
+  }
+  EXPECT_TRUE(worst_is_a_vertex);
+}
+
+// A cap at or above the vertex count changes nothing.
+TEST(SurfaceDistance, ACapAboveTheVertexCountGivesTheSameNumbers) {
+  const Mesh original = omsk_test::load_character("X/Testwuson.X", 6);
+  Mesh lod = original;
+  omsk_test::decimate(lod, 0.2);
+  const Pose p = sample_pose(skeleton(original), clips(original)[1], 0.37);
+  const MeasuredSurface a(posed_soup(original, p), 3000, 1), b(posed_soup(lod, p), 3000, 2);
+  std::vector<int> h1, h2, h3, h4;
+  const SurfaceDistance all = surface_distance(a, b, h1, h2), capped = surface_distance(a, b, h3, h4, 1000000);
+  EXPECT_EQ(capped.rms, all.rms);
+  EXPECT_EQ(capped.hausdorff, all.hausdorff);
+  EXPECT_EQ(capped.samples, all.samples);
+  EXPECT_EQ(h3, h1);
 }

@@ -203,6 +203,25 @@ TEST(TriangleBvh, AHintChangesNothingButTheSearch) {
   }
 }
 
+// One triangle's distance is an upper bound on the search's, equal to it for the triangle found, computed
+// the same way (what lets the held-out measure skip a search when the bound cannot raise its maximum).
+TEST(TriangleBvh, OneTrianglesDistanceBoundsTheNearest) {
+  const TriangleSoup s = cylinder(0.6);
+  const TriangleBvh bvh(s);
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> any(0, int(s.triangles.size()) - 1);
+  for (const Eigen::Vector3d& q : queries(s, 300, 3)) {
+    int found = -1;
+    const double d = bvh.nearest(q, found);
+    EXPECT_EQ(bvh.distance2_to(q, found), d);
+    EXPECT_GE(bvh.distance2_to(q, any(rng)), d);
+  }
+  const Eigen::Vector3d q = s.points[0];
+  EXPECT_EQ(bvh.distance2_to(q, -1), HUGE_VAL);
+  EXPECT_EQ(bvh.distance2_to(q, int(s.triangles.size())), HUGE_VAL);
+  EXPECT_EQ(bvh.distance2_to(Eigen::Vector3d(NAN, 0.0, 0.0), 0), HUGE_VAL);
+}
+
 TEST(TriangleBvh, TiesGoToTheLowerIndex) {
   const TriangleSoup s = cylinder(0);
   const TriangleBvh bvh(s);

@@ -121,8 +121,11 @@ double MeasuredSurface::distance(const Eigen::Vector3d& p, int& triangle, int hi
 namespace {
 
 // \p from's samples measured to \p to. With \p hints, each vertex's query starts from its hint's triangle
-// where it has one, and the hint becomes the triangle found.
-void one_way(const MeasuredSurface::Impl& from, const MeasuredSurface::Impl& to, std::vector<int>* hints,
+// where it has one, and the hint becomes the triangle found. With a \p stride above 1 only every stride-th
+// vertex in leaf order (spread evenly over the surface) is measured for the sum, standing for the others; those
+// can still raise the maximum, and the distance to their hint's triangle bounds theirs from above, so only
+// those whose bound exceeds the maximum found so far are searched: the maximum every vertex would give.
+void one_way(const MeasuredSurface::Impl& from, const MeasuredSurface::Impl& to, std::vector<int>* hints, size_t stride,
              double& sum_sq, double& max_d, size_t& count) {
   if (to.bvh.empty()) return;
   if (hints) hints->resize(from.vertex_samples, -1);
@@ -135,28 +138,66 @@ void one_way(const MeasuredSurface::Impl& from, const MeasuredSurface::Impl& to,
   // in the order of the samples: the same sum, to the last bit, as one loop over them without hints.
   int found = -1, previous = -1;
   std::vector<double> d2(from.vertex_samples);
-  for (uint32_t k : from.vertex_order) {
+  std::vector<char> counted(from.vertex_samples, 0);
+  std::vector<uint32_t> bounded;  // vertices not counted, in leaf order
+  for (size_t j = 0; j < from.vertex_order.size(); ++j) {
+    const uint32_t k = from.vertex_order[j];
     const int hint = hints && (*hints)[k] >= 0 ? (*hints)[k] : previous;
+    if (stride > 1 && j % stride != 0) {
+      d2[k] = to.bvh.distance2_to(from.samples[k], hint);
+      bounded.push_back(k);
+      continue;
+    }
+    counted[k] = 1;
     d2[k] = to.bvh.nearest(from.samples[k], found, hint);
     if (hints) (*hints)[k] = found;
     if (found >= 0) previous = found;
   }
-  for (double x : d2) add(x);
+  if (stride <= 1) {
+    for (double x : d2) add(x);
+  } else {
+    // The counted vertices stand for all of them, each for as many as were strided over: the RMS estimates
+    // the one every vertex would give (the directions and the area samples keep their weights in the pool).
+    double vertex_sum = 0.0;
+    size_t n_counted = 0;
+    for (size_t k = 0; k < d2.size(); ++k)
+      if (counted[k]) {
+        vertex_sum += d2[k];
+        max_d = std::max(max_d, std::sqrt(d2[k]));
+        ++n_counted;
+      }
+    if (n_counted > 0) {
+      sum_sq += vertex_sum * double(d2.size()) / double(n_counted);
+      count += d2.size();
+    }
+  }
   const Eigen::Vector3d* area = from.samples.data() + from.vertex_samples;
-  d2.assign(from.area_order.size(), 0.0);
+  std::vector<double> a2(from.area_order.size(), 0.0);
   for (uint32_t k : from.area_order) {
-    d2[k] = to.bvh.nearest(area[k], found, previous);
+    a2[k] = to.bvh.nearest(area[k], found, previous);
     if (found >= 0) previous = found;
   }
-  for (double x : d2) add(x);
+  for (double x : a2) add(x);
+  for (uint32_t k : bounded) {
+    if (!(std::sqrt(d2[k]) > max_d)) continue;
+    const int hint = hints && (*hints)[k] >= 0 ? (*hints)[k] : previous;
+    max_d = std::max(max_d, std::sqrt(to.bvh.nearest(from.samples[k], found, hint)));
+    if (hints) (*hints)[k] = found;
+    if (found >= 0) previous = found;
+  }
+}
+
+// Every stride-th vertex of \p from counts when it has more than \p counted vertices (0: all count).
+size_t vertex_stride(const MeasuredSurface::Impl& from, size_t counted) {
+  return counted > 0 && from.vertex_samples > counted ? (from.vertex_samples + counted - 1) / counted : 1;
 }
 
 SurfaceDistance pooled(const MeasuredSurface& a, const MeasuredSurface& b, std::vector<int>* a_hints,
-                       std::vector<int>* b_hints) {
+                       std::vector<int>* b_hints, size_t counted_vertices) {
   double sum_sq = 0.0, max_d = 0.0;
   size_t count = 0;
-  one_way(a.impl(), b.impl(), a_hints, sum_sq, max_d, count);
-  one_way(b.impl(), a.impl(), b_hints, sum_sq, max_d, count);
+  one_way(a.impl(), b.impl(), a_hints, vertex_stride(a.impl(), counted_vertices), sum_sq, max_d, count);
+  one_way(b.impl(), a.impl(), b_hints, vertex_stride(b.impl(), counted_vertices), sum_sq, max_d, count);
   SurfaceDistance d;
   d.samples = count;
   d.rms = count ? std::sqrt(sum_sq / count) : 0.0;
@@ -179,12 +220,12 @@ MeasuredSurface::MeasuredSurface(MeasuredSurface&&) noexcept = default;
 MeasuredSurface& MeasuredSurface::operator=(MeasuredSurface&&) noexcept = default;
 
 SurfaceDistance surface_distance(const MeasuredSurface& a, const MeasuredSurface& b, std::vector<int>& a_hints,
-                                 std::vector<int>& b_hints) {
-  return pooled(a, b, &a_hints, &b_hints);
+                                 std::vector<int>& b_hints, size_t counted_vertices) {
+  return pooled(a, b, &a_hints, &b_hints, counted_vertices);
 }
 
 SurfaceDistance surface_distance(const MeasuredSurface& a, const MeasuredSurface& b) {
-  return pooled(a, b, nullptr, nullptr);
+  return pooled(a, b, nullptr, nullptr, 0);
 }
 
 SurfaceDistance surface_distance(const TriangleSoup& a, const TriangleSoup& b, size_t n, uint64_t seed) {

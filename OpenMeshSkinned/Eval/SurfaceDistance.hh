@@ -70,9 +70,16 @@ SurfaceDistance surface_distance(const MeasuredSurface& a, const MeasuredSurface
  *  vertex of \p a, the triangle of \p b nearest to it last time (-1 or missing: none), and is updated;
  *  \p b_hints the same for \p b's vertices (area samples fall elsewhere in every pose and are searched
  *  without one). For the same surfaces measured again in another pose (the frames of a clip): the numbers
- *  of surface_distance(a, b), found faster. */
+ *  of surface_distance(a, b), found faster.
+ *
+ *  \p counted_vertices (0: no limit) caps how many of a surface's vertices are measured for the RMS: of a
+ *  denser surface, every k-th in the hierarchy's leaf order (so spread evenly over it), each standing for the
+ *  k around it, so the RMS estimates the one every vertex gives. The Hausdorff distance stays exact: every
+ *  other vertex is measured first to its hint's triangle, an upper bound on its distance, and searched only
+ *  when that bound could raise the maximum; its hint is updated only then. For dense originals, whose
+ *  vertices are most of the queries. */
 SurfaceDistance surface_distance(const MeasuredSurface& a, const MeasuredSurface& b, std::vector<int>& a_hints,
-                                 std::vector<int>& b_hints);
+                                 std::vector<int>& b_hints, size_t counted_vertices = 0);
 
 /** Distance between \p a and \p b with about \p samples_per_surface area samples on each (plus vertices).
  *  Deterministic for a given \p seed. */

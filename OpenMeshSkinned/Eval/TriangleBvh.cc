@@ -199,6 +199,13 @@ void TriangleBvh::consider(int s, const Eigen::Vector3d& q, double& best, int& b
   }
 }
 
+double TriangleBvh::distance2_to(const Eigen::Vector3d& q, int triangle) const {
+  if (triangle < 0 || size_t(triangle) >= slot_of_.size()) return HUGE_VAL;
+  Eigen::Vector3d bary;
+  const double d = closest_barycentric(slots_[slot_of_[triangle]].corner, q, bary);
+  return d < HUGE_VAL ? d : HUGE_VAL;
+}
+
 double TriangleBvh::nearest(const Eigen::Vector3d& q, int& triangle, int hint) const {
   triangle = -1;
   if (slots_.empty()) return HUGE_VAL;

@@ -45,6 +45,11 @@ public:
    *  the soup's range is ignored). */
   double nearest(const Eigen::Vector3d& q, int& triangle, int hint = -1) const;
 
+  /** The squared distance from \p q to soup triangle \p triangle alone, computed as nearest() computes it:
+   *  never less than nearest()'s answer, so a bound that spares the search where any upper bound will do.
+   *  Infinity for an index outside the soup. */
+  double distance2_to(const Eigen::Vector3d& q, int triangle) const;
+
 private:
   struct Node {
     double lo[3], hi[3];

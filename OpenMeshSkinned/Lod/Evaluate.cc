@@ -71,7 +71,8 @@ std::vector<HeldOutError> evaluate_lods(const SkinnedMesh& original, const std::
               posed_soup(*lods[i], lod_frames.empty() || lod_frames[i].empty() ? frames[f] : lod_frames[i][f]);
           const MeasuredSurface& lod_surface =
               posed_surface(lod_surfaces[i], lod, options.samples, 0x9E3779B97F4A7C16ull);
-          d[f * n_lods + i] = surface_distance(original_surface, lod_surface, original_hints[i], lod_hints[i]);
+          d[f * n_lods + i] = surface_distance(original_surface, lod_surface, original_hints[i], lod_hints[i],
+                                               options.counted_vertices);
           if (per_vertex) vd[f * n_lods + i] = vertex_errors(original_soup, original_surface, lod, lod_surface, diag);
         }
         ++done;

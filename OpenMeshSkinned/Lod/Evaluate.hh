@@ -20,6 +20,9 @@ struct EvaluateOptions {
   int threads = 0;                ///< frames measured on this many threads (0: the hardware's)
   bool per_vertex_error = false;  ///< fill HeldOutError::vertex_error
   size_t samples = 20000;         ///< area samples per surface and frame (plus every vertex)
+  /// at most this many of a surface's vertices count toward the RMS, evenly spread (0: all); every vertex
+  /// still counts toward the Hausdorff distance (surface_distance's counted_vertices)
+  size_t counted_vertices = 20000;
 };
 
 /** Each of \p lods against \p original in \p frames (poses of the original's skeleton).
