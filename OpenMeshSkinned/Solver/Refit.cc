@@ -76,19 +76,29 @@ struct Normal {
   Normal(const BlockPattern& p, size_t nv)
       : pattern(p), blocks(p.cols.size(), Eigen::Matrix3d::Zero()), rhs(Eigen::VectorXd::Zero(long(3 * nv))) {}
   /// A residual measured along \p normal (unit) in full and across it with weight \p tangential; a zero
-  /// normal or a tangential weight of 1 measures it in full every way.
+  /// normal or a tangential weight of 1 measures it in full every way. Counted in sum_sq and n.
   void add(const int* v, const double* b, int m, const std::vector<AffineVertex>& av,
            const std::vector<Eigen::Vector3d>& x, const Eigen::Vector3d& target,
            const Eigen::Vector3d& normal = Eigen::Vector3d::Zero(), double tangential = 1.0) {
+    sum_sq += accumulate(v, b, m, av, x, target, normal, tangential, 1.0).squaredNorm();
+    ++n;
+  }
+  /// As add(), its square weighted by \p weight, and not counted in sum_sq and n (a residual of another kind).
+  void add_weighted(const int* v, const double* b, int m, const std::vector<AffineVertex>& av,
+                    const std::vector<Eigen::Vector3d>& x, const Eigen::Vector3d& target, const Eigen::Vector3d& normal,
+                    double tangential, double weight) {
+    accumulate(v, b, m, av, x, target, normal, tangential, weight);
+  }
+  Eigen::Vector3d accumulate(const int* v, const double* b, int m, const std::vector<AffineVertex>& av,
+                             const std::vector<Eigen::Vector3d>& x, const Eigen::Vector3d& target,
+                             const Eigen::Vector3d& normal, double tangential, double weight) {
     Eigen::Vector3d r = -target;
     for (int i = 0; i < m; ++i) r += b[i] * (av[v[i]].A * x[v[i]] + av[v[i]].c);
-    sum_sq += r.squaredNorm();
-    ++n;
     // With P = n n^T + t (I - n n^T), the residual P r: its normal equations weigh by W = P^T P.
-    Eigen::Matrix3d W = Eigen::Matrix3d::Identity();
+    Eigen::Matrix3d W = weight * Eigen::Matrix3d::Identity();
     if (tangential != 1.0 && normal.squaredNorm() > 0.0) {
       const Eigen::Matrix3d nn = normal * normal.transpose();
-      W = nn + tangential * tangential * (Eigen::Matrix3d::Identity() - nn);
+      W = weight * (nn + tangential * tangential * (Eigen::Matrix3d::Identity() - nn));
     }
     // J_i = b_i A_i; the step solves J^T W J dx = -J^T W r.
     Eigen::Matrix3d J[3];
@@ -99,6 +109,7 @@ struct Normal {
       const Eigen::Matrix3d JtW = J[i].transpose() * W;
       for (int j = 0; j < m; ++j) blocks[pattern.find(v[i], v[j])] += JtW * J[j];
     }
+    return r;
   }
   void add_diagonal(size_t v, double lambda) {
     blocks[pattern.find(int(v), int(v))] += lambda * Eigen::Matrix3d::Identity();
@@ -161,6 +172,15 @@ struct PoseTargets {
   std::vector<std::vector<Eigen::Vector3d>> sample_at;  // pose -> sample -> posed point
   std::vector<std::vector<Eigen::Vector3d>> target;     // pose -> LOD vertex -> point on the posed original
   std::vector<std::vector<char>> has_target;
+  // Points of the LOD's faces (fixed barycentric places) and where each lies on the posed original.
+  struct FaceSample {
+    std::array<int, 3> v;
+    Eigen::Vector3d b;
+    double weight;
+  };
+  std::vector<FaceSample> face_samples;
+  std::vector<std::vector<Eigen::Vector3d>> face_target, face_normal;  // pose -> face sample -> point, normal
+  std::vector<std::vector<char>> has_face_target;
 };
 
 // The permutation of \p samples (vertex indices below \p n_vertices, then triangle indices offset by it)
@@ -182,6 +202,39 @@ std::vector<uint32_t> leaf_order(const MeasuredSurface& surface, size_t n_vertic
   return order;
 }
 
+// Fixed places on the LOD's faces, drawn to the original as its vertices are: the held-out measure is
+// symmetric, and a coarse LOD's face can leave the original between vertices that lie on it (its worst
+// distance is mostly there). The centroids of each face split into split x split triangles (fewer where
+// they would be more than \p max_samples), weighted by the face's area so that all of them weigh \p weight
+// times \p n_original samples of the original. None on a LOD of more than \p max_samples faces: its
+// vertices' targets hold it, and samples on some of its faces only (measured) fitted worse than none.
+std::vector<PoseTargets::FaceSample> face_samples(const SkinnedMesh& lod, int split, double weight, size_t n_original,
+                                                  size_t max_samples) {
+  std::vector<PoseTargets::FaceSample> out;
+  if (!(weight > 0.0) || lod.n_faces() == 0 || lod.n_faces() > max_samples) return out;
+  while (split > 1 && lod.n_faces() * size_t(split * split) > max_samples) --split;
+  std::vector<Eigen::Vector3d> places;
+  for (int i = 0; i < split; ++i)
+    for (int k = 0; i + k < split; ++k) {
+      places.emplace_back((i + 1.0 / 3) / split, (k + 1.0 / 3) / split, 1.0 - (i + k + 2.0 / 3) / split);
+      if (i + k + 1 < split)
+        places.emplace_back((i + 2.0 / 3) / split, (k + 2.0 / 3) / split, 1.0 - (i + k + 4.0 / 3) / split);
+    }
+  double total = 0.0;
+  for (auto fh : lod.faces()) total += lod.calc_face_area(fh);
+  if (!(total > 0.0)) return out;
+  const double per_area = weight * double(n_original) / total / double(places.size());
+  for (auto fh : lod.faces()) {
+    const double w = per_area * lod.calc_face_area(fh);
+    if (!(w > 0.0)) continue;
+    std::array<int, 3> v;
+    int i = 0;
+    for (auto vh : lod.fv_range(fh)) v[i++] = vh.idx();
+    for (const auto& b : places) out.push_back({v, b, w});
+  }
+  return out;
+}
+
 // Per pose, on threads taking poses in turn (each thread one search hierarchy, posed again pose by pose):
 // the samples posed, and where each LOD vertex lies on the posed original, found once from the
 // decimated LOD; the LOD must not leave those points. (Found in the rest shape instead, a vertex where
@@ -192,6 +245,9 @@ void find_pose_targets(const SkinnedMesh& lod, const SkinnedMesh& original, cons
   pt.target.assign(np, std::vector<Eigen::Vector3d>(nv));
   pt.has_target.assign(np, std::vector<char>(nv, 0));
   pt.sample_at.assign(np, {});
+  pt.face_target.assign(np, {});
+  pt.face_normal.assign(np, {});
+  pt.has_face_target.assign(np, {});
   std::vector<std::unique_ptr<MeasuredSurface>> surfaces(std::max(1, threads));
   // Each thread's last answer per vertex starts its next pose's search (a vertex moves little from pose to
   // pose; the nearest point does not depend on the hint); the previous vertex's starts the first.
@@ -222,6 +278,31 @@ void find_pose_targets(const SkinnedMesh& lod, const SkinnedMesh& original, cons
       closest_barycentric(corners, y[vh.idx()], bary);
       pt.target[j][vh.idx()] = bary[0] * corners[0] + bary[1] * corners[1] + bary[2] * corners[2];
       pt.has_target[j][vh.idx()] = 1;
+    }
+    const size_t nfs = pt.face_samples.size();
+    pt.face_target[j].resize(nfs);
+    pt.face_normal[j].resize(nfs);
+    pt.has_face_target[j].assign(nfs, 0);
+    for (size_t k = 0; k < nfs; ++k) {
+      const auto& fs = pt.face_samples[k];
+      const Eigen::Vector3d q = fs.b[0] * y[fs.v[0]] + fs.b[1] * y[fs.v[1]] + fs.b[2] * y[fs.v[2]];
+      // Its nearest corner's triangle, found just above, lies near its answer.
+      int corner = 0;
+      for (int c = 1; c < 3; ++c)
+        if (fs.b[c] > fs.b[corner]) corner = c;
+      const int near = hints[t][fs.v[corner]];
+      int tri = -1;
+      surface.distance(q, tri, near >= 0 ? near : previous);
+      if (tri < 0) continue;
+      previous = tri;
+      const auto& T = posed.triangles[tri];
+      const Eigen::Vector3d corners[3] = {posed.points[T[0]], posed.points[T[1]], posed.points[T[2]]};
+      Eigen::Vector3d bary;
+      closest_barycentric(corners, q, bary);
+      pt.face_target[j][k] = bary[0] * corners[0] + bary[1] * corners[1] + bary[2] * corners[2];
+      const Eigen::Vector3d fn = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
+      pt.face_normal[j][k] = fn.norm() > 0.0 ? Eigen::Vector3d(fn.normalized()) : Eigen::Vector3d::Zero();
+      pt.has_face_target[j][k] = 1;
     }
   });
 }
@@ -277,6 +358,12 @@ void add_residuals(const SkinnedMesh& lod, const PoseTargets& pt, const std::vec
       if (hits[j][s].tri[0] >= 0)
         ne.add(hits[j][s].tri.data(), hits[j][s].bary.data(), 3, av, x, pt.sample_at[j][s], hits[j][s].normal,
                tangential);
+    for (size_t k = 0; k < pt.face_samples.size(); ++k)
+      if (pt.has_face_target[j][k]) {
+        const auto& fs = pt.face_samples[k];
+        ne.add_weighted(fs.v.data(), fs.b.data(), 3, av, x, pt.face_target[j][k], pt.face_normal[j][k], tangential,
+                        fs.weight);
+      }
     // The LOD's vertices onto the original.
     for (auto vh : lod.vertices()) {
       if (!pt.has_target[j][vh.idx()]) continue;
@@ -343,12 +430,17 @@ RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const
   RefitReport report;
   if (!(settings.tangential_weight > 0.0 && settings.tangential_weight <= 1.0))
     throw std::invalid_argument("refit: the tangential weight must be in (0, 1]");
+  if (!(settings.face_weight >= 0.0 && std::isfinite(settings.face_weight)))
+    throw std::invalid_argument("refit: the face weight must be a finite number, 0 or more");
+  if (settings.face_split < 1) throw std::invalid_argument("refit: the face split must be 1 or more");
   if (poses.empty() || lod.n_faces() == 0) return report;
   const size_t nv = lod.n_vertices(), np = poses.size();
   const int threads = std::max(1, settings.threads);
   const std::vector<std::array<int, 3>> triangles = mesh_triangles(original);
   PoseTargets pt;
   pt.samples = strided_samples(original, triangles.size(), settings.max_samples);
+  pt.face_samples =
+      face_samples(lod, settings.face_split, settings.face_weight, pt.samples.size(), settings.max_samples);
   find_pose_targets(lod, original, poses, triangles, threads, pt);
   const std::vector<Eigen::Vector3d> x0 = rest_points(lod);
   // Skins and morph offsets do not change: each pose's affine maps serve every round.

@@ -29,6 +29,12 @@ struct RefitSettings {
   /// point-to-plane ICP does). RefitReport's residuals stay point to point.
   double tangential_weight = 0.7;
   size_t max_samples = 20000;  ///< original points (vertices, then centroids) per pose at most, evenly strided
+  /// weight of the LOD's own surface drawn to the original, relative to the original's samples drawn to the LOD
+  /// (the held-out measure is symmetric): points at fixed places on every LOD face, each pulled to where it
+  /// lay on the posed original before the fit, weighted by area (0: only the LOD's vertices are). At most
+  /// max_samples of them (fewer places a face), and none on a LOD of more than max_samples faces
+  double face_weight = 1.0;
+  int face_split = 3;  ///< those places: the centroids of each face split into face_split x face_split triangles
   /// Threads taking poses in turn (the answer does not depend on it; each holds one search hierarchy of the
   /// posed original, posed again for its next pose).
   int threads = 1;
