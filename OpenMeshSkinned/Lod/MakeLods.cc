@@ -59,6 +59,9 @@ void keep_bound_after_refit(const SkinnedMesh& original, SkinnedMesh& lmesh, std
 constexpr size_t kFlipMaxVertices = 20000;
 // Passes of the final fit after the flips on those inputs (bench/README.md).
 constexpr int kExtraFitPasses = 2;
+// Above this size the final fit draws only the LOD's vertices to the original, not points of its faces: on
+// the 240k human at 1 % those searches of the posed original cost a third of the fit (bench/README.md).
+constexpr size_t kFaceSamplesMaxVertices = 20000;
 
 void refit_chain(const SkinnedMesh& mesh, LodChain& chain, const LodOptions& opt, const LodCallbacks& cb) {
   for (size_t i = 0; i < chain.levels.size(); ++i) {
@@ -67,6 +70,7 @@ void refit_chain(const SkinnedMesh& mesh, LodChain& chain, const LodOptions& opt
     const auto tr = Clock::now();
     RefitSettings fit;
     fit.threads = thread_count(opt);
+    if (mesh.n_vertices() > kFaceSamplesMaxVertices) fit.face_weight = 0.0;
     std::vector<SkinnedMesh::Point> decimated;
     if (lod.deviation_bound >= 0.0)
       for (auto vh : lmesh.vertices()) decimated.push_back(lmesh.point(vh));
