@@ -122,6 +122,8 @@ TEST(Refit, APassFromWhereTheLastLeftFitsCloser) {
   EXPECT_LT(b, a);
 }
 
+namespace {
+
 // RMS distance from points spread by area over the posed LOD to the posed original, over \p poses: the half
 // of the symmetric held-out measure that the LOD's vertices alone do not see.
 double lod_to_original_rms(const Mesh& original, const Mesh& lod, const std::vector<Pose>& poses) {
@@ -137,7 +139,10 @@ double lod_to_original_rms(const Mesh& original, const Mesh& lod, const std::vec
       const int k = 1 + int(2000.0 * (b - a).cross(c - a).norm() / bbox_diagonal(original) / bbox_diagonal(original));
       for (int i = 0; i < k; ++i) {
         double r1 = u(rng), r2 = u(rng);
-        if (r1 + r2 > 1.0) r1 = 1.0 - r1, r2 = 1.0 - r2;
+        if (r1 + r2 > 1.0) {
+          r1 = 1.0 - r1;
+          r2 = 1.0 - r2;
+        }
         const double d = target.distance(a + r1 * (b - a) + r2 * (c - a));
         sum += d * d;  // a face's points are as many as its area allows: it weighs by its area
         ++n;
@@ -146,6 +151,8 @@ double lod_to_original_rms(const Mesh& original, const Mesh& lod, const std::vec
   }
   return std::sqrt(sum / double(n));
 }
+
+}  // namespace
 
 // The held-out measure is symmetric, and a coarse LOD's faces can leave the original between vertices that
 // sit on it: drawing points of the faces to the original as well brings the LOD's surface closer to it,
