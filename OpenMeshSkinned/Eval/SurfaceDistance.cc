@@ -138,8 +138,9 @@ void one_way(const MeasuredSurface::Impl& from, const MeasuredSurface::Impl& to,
   // in the order of the samples: the same sum, to the last bit, as one loop over them without hints.
   int found = -1, previous = -1;
   std::vector<double> d2(from.vertex_samples);
-  std::vector<char> counted(from.vertex_samples, 0);
   std::vector<uint32_t> bounded;  // vertices not counted, in leaf order
+  double counted_sum = 0.0;       // with a stride: the counted vertices', in leaf order
+  size_t n_counted = 0;
   for (size_t j = 0; j < from.vertex_order.size(); ++j) {
     const uint32_t k = from.vertex_order[j];
     const int hint = hints && (*hints)[k] >= 0 ? (*hints)[k] : previous;
@@ -148,28 +149,22 @@ void one_way(const MeasuredSurface::Impl& from, const MeasuredSurface::Impl& to,
       bounded.push_back(k);
       continue;
     }
-    counted[k] = 1;
     d2[k] = to.bvh.nearest(from.samples[k], found, hint);
     if (hints) (*hints)[k] = found;
     if (found >= 0) previous = found;
+    if (stride > 1) {
+      counted_sum += d2[k];
+      max_d = std::max(max_d, std::sqrt(d2[k]));
+      ++n_counted;
+    }
   }
   if (stride <= 1) {
     for (double x : d2) add(x);
-  } else {
+  } else if (n_counted > 0) {
     // The counted vertices stand for all of them, each for as many as were strided over: the RMS estimates
     // the one every vertex would give (the directions and the area samples keep their weights in the pool).
-    double vertex_sum = 0.0;
-    size_t n_counted = 0;
-    for (size_t k = 0; k < d2.size(); ++k)
-      if (counted[k]) {
-        vertex_sum += d2[k];
-        max_d = std::max(max_d, std::sqrt(d2[k]));
-        ++n_counted;
-      }
-    if (n_counted > 0) {
-      sum_sq += vertex_sum * double(d2.size()) / double(n_counted);
-      count += d2.size();
-    }
+    sum_sq += counted_sum * double(d2.size()) / double(n_counted);
+    count += d2.size();
   }
   const Eigen::Vector3d* area = from.samples.data() + from.vertex_samples;
   std::vector<double> a2(from.area_order.size(), 0.0);
