@@ -59,16 +59,25 @@ std::vector<HeldOutError> evaluate_lods(const SkinnedMesh& original, const std::
     // there (the same answers, found faster: a vertex moves little against the other surface between frames).
     try {
       std::vector<std::vector<int>> original_hints(n_lods), lod_hints(n_lods);
-      // This thread's surfaces, built at its first frame and posed again at the next (the same numbers as
-      // built afresh, without building the original's hierarchy again every frame).
+      // This thread's surfaces, built in the first frame whichever frame it takes first, then posed again
+      // frame by frame (without building the original's hierarchy again every frame). Which of a dense
+      // surface's vertices count toward the RMS follows its hierarchy's leaf order: a hierarchy built in
+      // another frame would count others, and the numbers would change with the threads' timing.
       std::unique_ptr<MeasuredSurface> posed;
       std::vector<std::unique_ptr<MeasuredSurface>> lod_surfaces(n_lods);
+      const auto lod_pose = [&](size_t i, size_t f) -> const Pose& {
+        return lod_frames.empty() || lod_frames[i].empty() ? frames[f] : lod_frames[i][f];
+      };
       for (size_t f = next++; f < frames.size(); f = next++) {
         const TriangleSoup original_soup = posed_soup(original, frames[f]);
+        if (!posed && f != 0)
+          posed = std::make_unique<MeasuredSurface>(posed_soup(original, frames[0]), options.samples, 1);
         const MeasuredSurface& original_surface = posed_surface(posed, original_soup, options.samples, 1);
         for (size_t i = 0; i < n_lods; ++i) {
-          const TriangleSoup lod =
-              posed_soup(*lods[i], lod_frames.empty() || lod_frames[i].empty() ? frames[f] : lod_frames[i][f]);
+          const TriangleSoup lod = posed_soup(*lods[i], lod_pose(i, f));
+          if (!lod_surfaces[i] && f != 0)
+            lod_surfaces[i] = std::make_unique<MeasuredSurface>(posed_soup(*lods[i], lod_pose(i, 0)), options.samples,
+                                                                0x9E3779B97F4A7C16ull);
           const MeasuredSurface& lod_surface =
               posed_surface(lod_surfaces[i], lod, options.samples, 0x9E3779B97F4A7C16ull);
           d[f * n_lods + i] = surface_distance(original_surface, lod_surface, original_hints[i], lod_hints[i],
