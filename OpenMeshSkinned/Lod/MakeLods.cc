@@ -38,9 +38,11 @@ std::string plain(double v) {
 
 // max_error after the final fit, which knows nothing of the bound: the fit is kept if the original's
 // vertices are still within the limit of the LOD in every example pose (measured, the solver's way: skin
-// only), and undone otherwise. The LOD's bound is then the measured distance, or the decimation's bound.
+// only), and undone otherwise (positions and skin weights). The LOD's bound is then the measured distance, or the
+// decimation's bound.
 void keep_bound_after_refit(const SkinnedMesh& original, SkinnedMesh& lmesh, std::vector<Pose> examples,
-                            const std::vector<SkinnedMesh::Point>& decimated, LodReport& lod, const LodOptions& opt,
+                            const std::vector<SkinnedMesh::Point>& decimated,
+                            const std::vector<Influences>& decimated_skin, LodReport& lod, const LodOptions& opt,
                             const LodCallbacks& cb) {
   for (Pose& p : examples) p.morph_weights.clear();
   const double diagonal = bbox_diagonal(original);
@@ -49,7 +51,11 @@ void keep_bound_after_refit(const SkinnedMesh& original, SkinnedMesh& lmesh, std
     lod.deviation_bound = worst;
     return;
   }
-  for (auto vh : lmesh.vertices()) lmesh.set_point(vh, decimated[vh.idx()]);
+  const auto h = influences_handle(lmesh);
+  for (auto vh : lmesh.vertices()) {
+    lmesh.set_point(vh, decimated[vh.idx()]);
+    lmesh.property(h, vh) = decimated_skin[vh.idx()];
+  }
   cb.say("refit " + fixed_number(100.0 * lod.ratio, 1) + "%: undone (a vertex of the input would be " +
          fixed_number(worst, 3) + "% of the diagonal away, over --max-error)");
 }
@@ -62,6 +68,9 @@ constexpr int kExtraFitPasses = 2;
 // Above this size the final fit draws only the LOD's vertices to the original, not points of its faces: on
 // the 240k human at 1 % those searches of the posed original cost a third of the fit (bench/README.md).
 constexpr size_t kFaceSamplesMaxVertices = 20000;
+// Above this size the final fit keeps the decimation's skin weights: on the human at 1 % fitting them took
+// 0.1 s (one more search of the LOD per pose) for 0.5 % of held-out RMS (bench/README.md).
+constexpr size_t kWeightFitMaxVertices = 20000;
 
 void refit_chain(const SkinnedMesh& mesh, LodChain& chain, const LodOptions& opt, const LodCallbacks& cb) {
   for (size_t i = 0; i < chain.levels.size(); ++i) {
@@ -71,9 +80,15 @@ void refit_chain(const SkinnedMesh& mesh, LodChain& chain, const LodOptions& opt
     RefitSettings fit;
     fit.threads = thread_count(opt);
     if (mesh.n_vertices() > kFaceSamplesMaxVertices) fit.face_weight = 0.0;
+    if (mesh.n_vertices() > kWeightFitMaxVertices) fit.fit_weights = false;
+    fit.max_influences = opt.max_influences;
     std::vector<SkinnedMesh::Point> decimated;
+    std::vector<Influences> decimated_skin;
     if (lod.deviation_bound >= 0.0)
-      for (auto vh : lmesh.vertices()) decimated.push_back(lmesh.point(vh));
+      for (auto vh : lmesh.vertices()) {
+        decimated.push_back(lmesh.point(vh));
+        decimated_skin.push_back(lmesh.property(influences_handle(lmesh), vh));
+      }
     RefitReport r = refit_positions(lmesh, mesh, chain.poses.examples, fit);
     // Flips move the surface the deviation bound was proven for: not with one.
     std::string flipped;
@@ -94,7 +109,8 @@ void refit_chain(const SkinnedMesh& mesh, LodChain& chain, const LodOptions& opt
     cb.say("refit " + fixed_number(100.0 * lod.ratio, 1) + "%: residual " + plain(r.before) + " -> " + plain(r.after) +
            " (" + std::to_string(r.rounds) + " rounds" + flipped + ", " + fixed_number(seconds(tr, Clock::now()), 2) +
            " s)");
-    if (lod.deviation_bound >= 0.0) keep_bound_after_refit(mesh, lmesh, chain.poses.examples, decimated, lod, opt, cb);
+    if (lod.deviation_bound >= 0.0)
+      keep_bound_after_refit(mesh, lmesh, chain.poses.examples, decimated, decimated_skin, lod, opt, cb);
   }
 }
 

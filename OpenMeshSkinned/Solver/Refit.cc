@@ -7,6 +7,7 @@
 #include "OpenMeshSkinned/Skin/Morph.hh"
 #include "OpenMeshSkinned/Skin/SkinProperties.hh"
 #include "OpenMeshSkinned/Solver/FitSamples.hh"
+#include "OpenMeshSkinned/Solver/RefitWeights.hh"
 #include "OpenMeshSkinned/Solver/Threads.hh"
 
 #include <Eigen/Sparse>
@@ -423,6 +424,52 @@ bool solve_step(const Eigen::SparseMatrix<double>& JtJ, const Eigen::VectorXd& r
   return solver.info() == Eigen::Success && dx.allFinite();
 }
 
+// The fit's residuals of every pose as the skin step takes them (the same ones add_residuals sums).
+std::vector<WeightResidual> weight_residuals(const PoseTargets& pt, const std::vector<std::vector<Hit>>& hits,
+                                             size_t nv) {
+  std::vector<WeightResidual> out;
+  for (size_t j = 0; j < hits.size(); ++j) {
+    for (size_t s = 0; s < pt.samples.size(); ++s)
+      if (hits[j][s].tri[0] >= 0)
+        out.push_back({hits[j][s].tri, hits[j][s].bary, pt.sample_at[j][s], hits[j][s].normal, 1.0, 3, int(j)});
+    for (size_t k = 0; k < pt.face_samples.size(); ++k)
+      if (pt.has_face_target[j][k]) {
+        const auto& fs = pt.face_samples[k];
+        out.push_back({fs.v, fs.b, pt.face_target[j][k], pt.face_normal[j][k], fs.weight, 3, int(j)});
+      }
+    for (size_t v = 0; v < nv; ++v)
+      if (pt.has_target[j][v])
+        out.push_back(
+            {{int(v), -1, -1}, Eigen::Vector3d(1, 0, 0), pt.target[j][v], Eigen::Vector3d::Zero(), 1.0, 1, int(j)});
+  }
+  return out;
+}
+
+// The skin step (RefitWeights.hh) on the residuals where the positions' rounds left the LOD. A face that
+// then folds in some pose gets its corners' weights back (all of them, if folds remain).
+void fit_weights(SkinnedMesh& lod, const std::vector<Pose>& poses, const PoseTargets& pt,
+                 std::vector<std::vector<Hit>>& hits, const RefitSettings& settings, int threads,
+                 const std::vector<std::vector<Eigen::Vector3d>>& posed_initial) {
+  const auto h = influences_handle(lod);
+  std::vector<Influences> before;
+  for (auto vh : lod.vertices()) before.push_back(lod.property(h, vh));
+  project_samples(lod, poses, pt, threads, hits);
+  WeightRefitSettings ws;
+  ws.max_influences = settings.max_influences;
+  ws.tangential_weight = settings.tangential_weight;
+  if (refit_weights(lod, poses, weight_residuals(pt, hits, lod.n_vertices()), ws) == 0) return;
+  for (int tries = 0; tries < 5; ++tries) {
+    std::vector<std::vector<Eigen::Vector3d>> posed_after;
+    for (const Pose& p : poses) posed_after.push_back(skin_positions(lod, p));
+    const auto folded = folding_faces(lod, posed_initial, posed_after);
+    if (folded.empty()) return;
+    if (tries == 4)
+      for (auto vh : lod.vertices()) lod.property(h, vh) = before[vh.idx()];
+    for (auto fh : folded)
+      for (auto vh : lod.fv_range(fh)) lod.property(h, vh) = before[vh.idx()];
+  }
+}
+
 }  // namespace
 
 RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const std::vector<Pose>& poses,
@@ -433,6 +480,8 @@ RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const
   if (!(settings.face_weight >= 0.0 && std::isfinite(settings.face_weight)))
     throw std::invalid_argument("refit: the face weight must be a finite number, 0 or more");
   if (settings.face_split < 1) throw std::invalid_argument("refit: the face split must be 1 or more");
+  if (settings.max_influences < 1 || settings.max_influences > Influences::kCapacity)
+    throw std::invalid_argument("refit: the cap on influences must be 1 to 8");
   if (poses.empty() || lod.n_faces() == 0) return report;
   const size_t nv = lod.n_vertices(), np = poses.size();
   const int threads = std::max(1, settings.threads);
@@ -472,6 +521,7 @@ RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const
     if (!take_step(lod, poses, posed_initial, x, dx)) break;
     ++report.rounds;
   }
+  if (settings.fit_weights) fit_weights(lod, poses, pt, hits, settings, threads, posed_initial);
   return report;
 }
 

@@ -12,6 +12,10 @@
  *  pose, one search hierarchy per thread), plus a small pull toward the decimated positions (so that directions
  *  nothing constrains stay put). A round whose positions would turn a face by more than 90
  *  degrees in some pose is halved until none does.
+ *
+ *  Then, with RefitSettings::fit_weights, the skin: every LOD vertex's weights over its own and its
+ *  neighbours' joints against the same residuals, the rest positions fixed (RefitWeights.hh); a face that
+ *  would then fold in some pose keeps its corners' weights.
  */
 
 #include "OpenMeshSkinned/Skin/Skeleton.hh"
@@ -41,6 +45,9 @@ struct RefitSettings {
   /// Larger LODs take each round's step from conjugate gradients instead of a sparse factorization, whose
   /// fill-in grows faster than the mesh (the step agrees to the solver's tolerance).
   size_t direct_max_vertices = 20000;
+  /// After the positions, fit the skin weights too (RefitWeights.hh); false keeps every vertex's skin.
+  bool fit_weights = true;
+  int max_influences = 4;  ///< joints per vertex at most when fitting the weights (1..Influences::kCapacity)
 };
 
 struct RefitReport {
@@ -48,8 +55,8 @@ struct RefitReport {
   int rounds = 0;                    ///< rounds that moved the vertices
 };
 
-/// Refits \p lod (a decimation of \p original, garbage-collected) in \p poses. Skins, UVs and morph
-/// offsets are kept; only rest positions move.
+/// Refits \p lod (a decimation of \p original, garbage-collected) in \p poses. UVs and morph offsets are
+/// kept; rest positions move, and skin weights unless RefitSettings::fit_weights is false.
 RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const std::vector<Pose>& poses,
                             const RefitSettings& settings = {});
 

@@ -156,7 +156,8 @@ void declare_layer_options(CLI::App& app, Options& opt, OptionWords& c) {
   app.add_flag("!--no-refit", opt.refit,
                "Skip the final fit (by default every LOD vertex's rest position is refitted against the original "
                "surface in all example poses: sparse least squares, three rounds; on inputs of up to 20000 "
-               "vertices points of the LOD's faces are drawn to the original too, and edges whose other diagonal "
+               "vertices points of the LOD's faces are drawn to the original too, each pass ends by fitting the skin "
+               "weights over each vertex's and its neighbours' joints, and edges whose other diagonal "
                "lies closer to the original are then flipped and the fit run twice more, each pass from where the "
                "last left the LOD)");
   app.add_flag("!--no-eval", opt.evaluate,
