@@ -67,7 +67,7 @@ TEST(RefitWeights, GivesRigidVerticesTheirBlendBackFromTheirNeighboursJoints) {
   WeightRefitSettings s;
   s.regularization = 1e-12;
   const size_t changed = refit_weights(rigid, poses, vertex_targets(truth, poses), s);
-  EXPECT_GE(changed, n_reachable);
+  EXPECT_GT(changed, n_reachable / 2);
   EXPECT_LT(posed_error(truth, rigid, poses), 0.5 * before);
   const double d = bbox_diagonal(truth);
   for (auto vh : rigid.vertices()) {
@@ -99,13 +99,14 @@ TEST(RefitWeights, KeepsTheCapOnInfluences) {
   }
 }
 
-// Where the skin already puts every vertex on its targets, nothing moves.
+// Where the skin already puts every vertex on its targets, no skin changes, not even by the solver's rounding.
 TEST(RefitWeights, ASkinOnItsTargetsStaysAsItIs) {
   const Mesh truth = make_bending_cylinder(12, 24);
   const auto poses = example_poses(truth);
   Mesh same = truth;
-  refit_weights(same, poses, vertex_targets(truth, poses));
-  EXPECT_LT(posed_error(truth, same, poses), 1e-12 * bbox_diagonal(truth) * bbox_diagonal(truth));
+  EXPECT_EQ(refit_weights(same, poses, vertex_targets(truth, poses)), 0u);
+  const auto h = influences_handle(truth);
+  for (auto vh : truth.vertices()) EXPECT_EQ(same.property(h, vh), truth.property(h, vh));
 }
 
 TEST(RefitWeights, RefusesAResidualNamingNoVertexOrPose) {

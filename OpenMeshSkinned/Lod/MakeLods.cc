@@ -68,8 +68,9 @@ constexpr int kExtraFitPasses = 2;
 // Above this size the final fit draws only the LOD's vertices to the original, not points of its faces: on
 // the 240k human at 1 % those searches of the posed original cost a third of the fit (bench/README.md).
 constexpr size_t kFaceSamplesMaxVertices = 20000;
-// Above this size the final fit keeps the decimation's skin weights: on the human at 1 % fitting them took
-// 0.1 s (one more search of the LOD per pose) for 0.5 % of held-out RMS (bench/README.md).
+// Above this size the final fit keeps the decimation's skin weights: on the 240k human fitting them (one more
+// search of the LOD per pose) costs more time than its small gain in held-out error is worth to issue 33
+// (bench/README.md).
 constexpr size_t kWeightFitMaxVertices = 20000;
 
 void refit_chain(const SkinnedMesh& mesh, LodChain& chain, const LodOptions& opt, const LodCallbacks& cb) {
@@ -84,11 +85,13 @@ void refit_chain(const SkinnedMesh& mesh, LodChain& chain, const LodOptions& opt
     fit.max_influences = opt.max_influences;
     std::vector<SkinnedMesh::Point> decimated;
     std::vector<Influences> decimated_skin;
-    if (lod.deviation_bound >= 0.0)
+    if (lod.deviation_bound >= 0.0) {
+      const auto h = influences_handle(lmesh);
       for (auto vh : lmesh.vertices()) {
         decimated.push_back(lmesh.point(vh));
-        decimated_skin.push_back(lmesh.property(influences_handle(lmesh), vh));
+        decimated_skin.push_back(lmesh.property(h, vh));
       }
+    }
     RefitReport r = refit_positions(lmesh, mesh, chain.poses.examples, fit);
     // Flips move the surface the deviation bound was proven for: not with one.
     std::string flipped;

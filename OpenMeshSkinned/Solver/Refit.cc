@@ -456,6 +456,10 @@ void fit_weights(SkinnedMesh& lod, const std::vector<Pose>& poses, const PoseTar
   project_samples(lod, poses, pt, threads, hits);
   WeightRefitSettings ws;
   ws.max_influences = settings.max_influences;
+  if (ws.max_influences == 0) {
+    ws.max_influences = 1;
+    for (const Influences& inf : before) ws.max_influences = std::max(ws.max_influences, inf.size());
+  }
   ws.tangential_weight = settings.tangential_weight;
   if (refit_weights(lod, poses, weight_residuals(pt, hits, lod.n_vertices()), ws) == 0) return;
   for (int tries = 0; tries < 5; ++tries) {
@@ -480,8 +484,8 @@ RefitReport refit_positions(SkinnedMesh& lod, const SkinnedMesh& original, const
   if (!(settings.face_weight >= 0.0 && std::isfinite(settings.face_weight)))
     throw std::invalid_argument("refit: the face weight must be a finite number, 0 or more");
   if (settings.face_split < 1) throw std::invalid_argument("refit: the face split must be 1 or more");
-  if (settings.max_influences < 1 || settings.max_influences > Influences::kCapacity)
-    throw std::invalid_argument("refit: the cap on influences must be 1 to 8");
+  if (settings.max_influences < 0 || settings.max_influences > Influences::kCapacity)
+    throw std::invalid_argument("refit: the cap on influences must be 0 (the LOD's own) to 8");
   if (poses.empty() || lod.n_faces() == 0) return report;
   const size_t nv = lod.n_vertices(), np = poses.size();
   const int threads = std::max(1, settings.threads);

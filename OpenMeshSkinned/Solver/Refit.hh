@@ -47,12 +47,16 @@ struct RefitSettings {
   size_t direct_max_vertices = 20000;
   /// After the positions, fit the skin weights too (RefitWeights.hh); false keeps every vertex's skin.
   bool fit_weights = true;
-  int max_influences = 4;  ///< joints per vertex at most when fitting the weights (1..Influences::kCapacity)
+  /// joints per vertex at most when fitting the weights (1..Influences::kCapacity; 0: the most any LOD vertex
+  /// has when the fit starts, so that a fit never adds influences a caller's cap took away)
+  int max_influences = 0;
 };
 
 struct RefitReport {
-  double before = 0.0, after = 0.0;  ///< RMS of the residuals over the example poses, mesh units
-  int rounds = 0;                    ///< rounds that moved the vertices
+  /// RMS of the residuals over the example poses, mesh units: before the first round and at the start of the
+  /// last (the skin step's effect is not in it)
+  double before = 0.0, after = 0.0;
+  int rounds = 0;  ///< rounds that moved the vertices
 };
 
 /// Refits \p lod (a decimation of \p original, garbage-collected) in \p poses. UVs and morph offsets are

@@ -53,6 +53,8 @@ size_t refit_weights(SkinnedMesh& lod, const std::vector<Pose>& poses, const std
     const Influences inf = lod.property(h, vh);
     joints.clear();
     for (const JointWeight& jw : inf) joints.push_back(jw.joint);
+    // The neighbours' joints as the sweep has left them: one a neighbour took up is offered on. Taken from
+    // the skins before the sweep instead, the peer bench's RMS was the same or up to 0.6 % higher.
     for (auto wh : lod.vv_range(vh))
       for (const JointWeight& jw : lod.property(h, wh))
         if (int(joints.size()) < WeightSolver::kMaxJoints &&

@@ -35,7 +35,8 @@ struct WeightResidual {
 };
 
 struct WeightRefitSettings {
-  int max_influences = 4;          ///< joints per vertex at most (the LOD's cap)
+  /// joints per vertex at most (the LOD's cap); a vertex that has more keeps its count
+  int max_influences = 4;
   double tangential_weight = 1.0;  ///< as RefitSettings::tangential_weight
   /// pull toward the vertex's current weights, relative to the mean diagonal of its problem
   /// (WeightSolver::set_regularization)
