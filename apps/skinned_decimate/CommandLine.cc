@@ -159,7 +159,7 @@ void declare_layer_options(CLI::App& app, Options& opt, OptionWords& c) {
                "vertices points of the LOD's faces are drawn to the original too, each pass ends by fitting the skin "
                "weights over each vertex's and its neighbours' joints, and edges whose other diagonal "
                "lies closer to the original are then flipped and the fit run twice more, each pass from where the "
-               "last left the LOD)");
+               "last left the LOD; a frame animation's stored frames are then each fitted on their own)");
   app.add_flag("!--no-eval", opt.evaluate,
                "Skip measuring the error in held-out frames (batch use: the table shows triangles and time only)");
 }

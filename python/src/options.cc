@@ -60,8 +60,8 @@ const std::vector<Field>& fields() {
       field("per_vertex_error", "bool", "keep each LOD vertex's worst held-out error (report.vertex_error)",
             &LodOptions::per_vertex_error),
       field("refit", "bool",
-            "final fit of the LODs' rest positions in the example poses (with edge flips and skin weights on small "
-            "inputs)",
+            "final fit of the LODs' rest positions in the example poses (with edge flips, skin weights and each "
+            "stored frame of a frame animation on small inputs)",
             &LodOptions::refit),
       field("strict_fold", "bool", "never relax the 90-degree fold-over limit to reach a target",
             &LodOptions::strict_fold),
