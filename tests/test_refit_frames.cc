@@ -90,12 +90,26 @@ TEST(RefitFrames, TheAnswerDoesNotDependOnTheThreadCount) {
   for (auto vh : one.vertices()) EXPECT_EQ(one.property(hd, vh), two.property(hd, vh));
 }
 
-// A skinned character has no stored frames: nothing is fitted and nothing moves.
-TEST(RefitFrames, ASkinnedCharacterIsNotAFrameAnimation) {
-  const omsk_test::Mesh original = omsk_test::load_character("X/Testwuson.X", 4);
-  omsk_test::Mesh lod = original;
-  omsk_test::decimate(lod, 0.3);
-  const omsk_test::Mesh before = lod;
+// Clips that mix targets otherwise (here a weight of 2, which would extrapolate the frames' separate fits)
+// are not a frame animation: nothing is fitted and nothing moves. A skinned character has no frames either.
+TEST(RefitFrames, OnlyAFrameAnimationIsFittedFrameByFrame) {
+  const SkinnedMesh original = faerie();
+  SkinnedMesh lod = lod_of(original, 0.5);
+  Clip& clip = clips(lod)[frame_clip(lod)];
+  ASSERT_FALSE(clip.morph_channels.empty());
+  for (double& w : clip.morph_channels[5].weights) w *= 2.0;
+  const SkinnedMesh before = lod;
   EXPECT_EQ(refit_frames(lod, original).frames, 0u);
   for (auto vh : lod.vertices()) EXPECT_EQ(lod.point(vh), before.point(vh));
+  OpenMesh::VPropHandleT<MorphDeltas> hd;
+  ASSERT_TRUE(morph_deltas_handle(lod, hd));
+  for (auto vh : lod.vertices()) EXPECT_EQ(lod.property(hd, vh), before.property(hd, vh));
+  // The same LOD with its clip as it was is fitted.
+  clips(lod) = clips(lod_of(original, 0.5));
+  EXPECT_EQ(refit_frames(lod, original).frames, 198u);
+
+  const omsk_test::Mesh wuson = omsk_test::load_character("X/Testwuson.X", 4);
+  omsk_test::Mesh wlod = wuson;
+  omsk_test::decimate(wlod, 0.3);
+  EXPECT_EQ(refit_frames(wlod, wuson).frames, 0u);
 }

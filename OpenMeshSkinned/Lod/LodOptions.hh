@@ -37,8 +37,10 @@ struct LodOptions {
   int threads = 0;                ///< 0: the hardware's
   bool evaluate = true;           ///< measure every LOD in held-out frames
   bool per_vertex_error = false;  ///< and keep each LOD vertex's worst held-out error (LodReport::vertex_error)
-  bool refit = true;              ///< final fit of the LODs' rest positions in the example poses
-  bool strict_fold = false;       ///< never relax the 90-degree fold-over limit to reach a target
+  /// final fit of the LODs' rest positions in the example poses (on small inputs also their skin weights, and a
+  /// frame animation's every stored frame: Refit.hh, RefitFrames.hh)
+  bool refit = true;
+  bool strict_fold = false;  ///< never relax the 90-degree fold-over limit to reach a target
   /// The skinned and frames priorities are energy / area^area_exponent (ModSkinnedQuadricT::set_area_exponent,
   /// ModFrameQuadricT::set_area_exponent): 0 is the energy, 1 a mean squared distance; -1 (kAutoAreaExponent):
   /// by the input, lod_area_exponent() and lod_frames_area_exponent().

@@ -73,9 +73,9 @@ constexpr size_t kFaceSamplesMaxVertices = 20000;
 // search of the LOD per pose) costs more time than its small gain in held-out error is worth to issue 33
 // (bench/README.md).
 constexpr size_t kWeightFitMaxVertices = 20000;
-// A frame animation's stored frames are fitted one by one on inputs up to this size: each frame is a fit of
-// its own, so the time grows with frames times size (bench/README.md).
-constexpr size_t kFrameFitMaxVertices = 20000;
+// A frame animation's stored frames are fitted one by one while vertices times stored frames stay under this:
+// each frame is a fit of its own, so the time grows with both (bench/README.md).
+constexpr size_t kFrameFitMaxVertexFrames = 2000000;
 
 void refit_chain(const SkinnedMesh& mesh, LodChain& chain, const LodOptions& opt, const LodCallbacks& cb) {
   for (size_t i = 0; i < chain.levels.size(); ++i) {
@@ -114,7 +114,8 @@ void refit_chain(const SkinnedMesh& mesh, LodChain& chain, const LodOptions& opt
       }
     }
     // A bound proven in the example poses says nothing of the other stored frames: not with one.
-    if (lod.deviation_bound < 0.0 && mesh.n_vertices() <= kFrameFitMaxVertices && morph_animated_only(mesh)) {
+    if (lod.deviation_bound < 0.0 && morph_animated_only(mesh) &&
+        mesh.n_vertices() * (morph_targets(mesh).size() + 1) <= kFrameFitMaxVertexFrames) {
       const RefitFramesReport fr = refit_frames(lmesh, mesh, fit);
       if (fr.frames > 0) flipped += ", " + std::to_string(fr.frames) + " frames fitted";
     }
