@@ -37,6 +37,13 @@ double posed_error(const Mesh& a, const Mesh& b, const std::vector<Pose>& poses)
   return sum;
 }
 
+// \p truth with every vertex bound to its heaviest joint alone.
+Mesh made_rigid(const Mesh& truth) {
+  Mesh rigid = truth;
+  for (auto vh : rigid.vertices()) rigid.property(influences_handle(rigid), vh).keep_heaviest(1);
+  return rigid;
+}
+
 }  // namespace
 
 // Vertices made rigid to their heaviest joint get their blend back wherever their own and their neighbours'
@@ -44,9 +51,8 @@ double posed_error(const Mesh& a, const Mesh& b, const std::vector<Pose>& poses)
 TEST(RefitWeights, GivesRigidVerticesTheirBlendBackFromTheirNeighboursJoints) {
   const Mesh truth = make_bending_cylinder(12, 24);
   const auto poses = example_poses(truth);
-  Mesh rigid = truth;
+  Mesh rigid = made_rigid(truth);
   const auto h = influences_handle(rigid);
-  for (auto vh : rigid.vertices()) rigid.property(h, vh).keep_heaviest(1);
   // Which blended vertices can be given their blend back.
   std::vector<char> reachable(rigid.n_vertices(), 0);
   size_t n_reachable = 0;
@@ -87,9 +93,8 @@ TEST(RefitWeights, GivesRigidVerticesTheirBlendBackFromTheirNeighboursJoints) {
 TEST(RefitWeights, KeepsTheCapOnInfluences) {
   const Mesh truth = make_bending_cylinder(12, 24);
   const auto poses = example_poses(truth);
-  Mesh rigid = truth;
+  Mesh rigid = made_rigid(truth);
   const auto h = influences_handle(rigid);
-  for (auto vh : rigid.vertices()) rigid.property(h, vh).keep_heaviest(1);
   WeightRefitSettings s;
   s.max_influences = 1;
   refit_weights(rigid, poses, vertex_targets(truth, poses), s);
