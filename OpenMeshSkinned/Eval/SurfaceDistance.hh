@@ -69,8 +69,8 @@ SurfaceDistance surface_distance(const MeasuredSurface& a, const MeasuredSurface
 /** The same distance, each vertex's query starting from the triangle it hit before: \p a_hints holds, per
  *  vertex of \p a, the triangle of \p b nearest to it last time (-1 or missing: none), and is updated;
  *  \p b_hints the same for \p b's vertices (area samples are searched from the one before them: hints of
- *  their own, from the frame before, measured no faster). For the same surfaces measured again in another pose (the
- * frames of a clip): the numbers of surface_distance(a, b), found faster.
+ *  their own, from the frame before, measured no faster). For the same surfaces measured again in another
+ *  pose (the frames of a clip): the numbers of surface_distance(a, b), found faster.
  *
  *  \p counted_vertices (0: no limit) caps how many of a surface's vertices are measured for the RMS: of a
  *  denser surface, every k-th in the hierarchy's leaf order (so spread evenly over it), each standing for the

@@ -95,12 +95,7 @@ struct Normal {
                              const Eigen::Vector3d& normal, double tangential, double weight) {
     Eigen::Vector3d r = -target;
     for (int i = 0; i < m; ++i) r += b[i] * (av[v[i]].A * x[v[i]] + av[v[i]].c);
-    // With P = n n^T + t (I - n n^T), the residual P r: its normal equations weigh by W = P^T P.
-    Eigen::Matrix3d W = weight * Eigen::Matrix3d::Identity();
-    if (tangential != 1.0 && normal.squaredNorm() > 0.0) {
-      const Eigen::Matrix3d nn = normal * normal.transpose();
-      W = weight * (nn + tangential * tangential * (Eigen::Matrix3d::Identity() - nn));
-    }
+    const Eigen::Matrix3d W = residual_metric(normal, tangential, weight);
     // J_i = b_i A_i; the step solves J^T W J dx = -J^T W r.
     Eigen::Matrix3d J[3];
     for (int i = 0; i < m; ++i) J[i] = b[i] * av[v[i]].A;
@@ -347,32 +342,44 @@ void project_samples(const SkinnedMesh& lod, const std::vector<Pose>& poses, con
   });
 }
 
-// The residuals of every pose, summed in pose order so that the answer does not depend on the thread count.
-// A sample's nearest point on the LOD is last round's answer: along the surface it says little of where the
-// sample belongs, so the part of its residual perpendicular to Hit::normal weighs \p tangential (1: in full).
-void add_residuals(const SkinnedMesh& lod, const PoseTargets& pt, const std::vector<std::vector<Hit>>& hits,
-                   const std::vector<std::vector<AffineVertex>>& affine, const std::vector<Eigen::Vector3d>& x,
-                   double tangential, Normal& ne) {
-  for (size_t j = 0; j < affine.size(); ++j) {
-    const std::vector<AffineVertex>& av = affine[j];
+// Every residual of the fit, pose by pose in pose order (so that sums over them do not depend on the thread
+// count): each original sample to its nearest point on the posed LOD, each face sample and each LOD vertex to
+// its point on the posed original. \p visit(pose, corners, bary, m, target, normal, weight, counted): a sample's
+// nearest point on the LOD is last round's answer, so its residual is measured along Hit::normal (the fit's
+// tangential weight across it); the face samples are residuals of another kind (not counted in the report).
+template <typename Visit>
+void for_each_residual(const SkinnedMesh& lod, const PoseTargets& pt, const std::vector<std::vector<Hit>>& hits,
+                       Visit visit) {
+  static const double one = 1.0;
+  const Eigen::Vector3d none = Eigen::Vector3d::Zero();
+  for (size_t j = 0; j < hits.size(); ++j) {
     for (size_t s = 0; s < pt.samples.size(); ++s)
       if (hits[j][s].tri[0] >= 0)
-        ne.add(hits[j][s].tri.data(), hits[j][s].bary.data(), 3, av, x, pt.sample_at[j][s], hits[j][s].normal,
-               tangential);
+        visit(j, hits[j][s].tri.data(), hits[j][s].bary.data(), 3, pt.sample_at[j][s], hits[j][s].normal, 1.0, true);
     for (size_t k = 0; k < pt.face_samples.size(); ++k)
       if (pt.has_face_target[j][k]) {
         const auto& fs = pt.face_samples[k];
-        ne.add_weighted(fs.v.data(), fs.b.data(), 3, av, x, pt.face_target[j][k], pt.face_normal[j][k], tangential,
-                        fs.weight);
+        visit(j, fs.v.data(), fs.b.data(), 3, pt.face_target[j][k], pt.face_normal[j][k], fs.weight, false);
       }
-    // The LOD's vertices onto the original.
     for (auto vh : lod.vertices()) {
-      if (!pt.has_target[j][vh.idx()]) continue;
       const int v = vh.idx();
-      const double one = 1.0;
-      ne.add(&v, &one, 1, av, x, pt.target[j][v]);
+      if (pt.has_target[j][v]) visit(j, &v, &one, 1, pt.target[j][v], none, 1.0, true);
     }
   }
+}
+
+// The residuals summed into the normal equations of the rest positions.
+void add_residuals(const SkinnedMesh& lod, const PoseTargets& pt, const std::vector<std::vector<Hit>>& hits,
+                   const std::vector<std::vector<AffineVertex>>& affine, const std::vector<Eigen::Vector3d>& x,
+                   double tangential, Normal& ne) {
+  for_each_residual(lod, pt, hits,
+                    [&](size_t j, const int* v, const double* b, int m, const Eigen::Vector3d& target,
+                        const Eigen::Vector3d& normal, double weight, bool counted) {
+                      if (counted)
+                        ne.add(v, b, m, affine[j], x, target, normal, tangential);
+                      else
+                        ne.add_weighted(v, b, m, affine[j], x, target, normal, tangential, weight);
+                    });
 }
 
 // Halve the step until no face folds in any pose. A sliver turns over at any step: if one still folds
@@ -424,24 +431,22 @@ bool solve_step(const Eigen::SparseMatrix<double>& JtJ, const Eigen::VectorXd& r
   return solver.info() == Eigen::Success && dx.allFinite();
 }
 
-// The fit's residuals of every pose as the skin step takes them (the same ones add_residuals sums).
-std::vector<WeightResidual> weight_residuals(const PoseTargets& pt, const std::vector<std::vector<Hit>>& hits,
-                                             size_t nv) {
+// The fit's residuals as the skin step takes them.
+std::vector<WeightResidual> weight_residuals(const SkinnedMesh& lod, const PoseTargets& pt,
+                                             const std::vector<std::vector<Hit>>& hits) {
   std::vector<WeightResidual> out;
-  for (size_t j = 0; j < hits.size(); ++j) {
-    for (size_t s = 0; s < pt.samples.size(); ++s)
-      if (hits[j][s].tri[0] >= 0)
-        out.push_back({hits[j][s].tri, hits[j][s].bary, pt.sample_at[j][s], hits[j][s].normal, 1.0, 3, int(j)});
-    for (size_t k = 0; k < pt.face_samples.size(); ++k)
-      if (pt.has_face_target[j][k]) {
-        const auto& fs = pt.face_samples[k];
-        out.push_back({fs.v, fs.b, pt.face_target[j][k], pt.face_normal[j][k], fs.weight, 3, int(j)});
-      }
-    for (size_t v = 0; v < nv; ++v)
-      if (pt.has_target[j][v])
-        out.push_back(
-            {{int(v), -1, -1}, Eigen::Vector3d(1, 0, 0), pt.target[j][v], Eigen::Vector3d::Zero(), 1.0, 1, int(j)});
-  }
+  for_each_residual(lod, pt, hits,
+                    [&](size_t j, const int* v, const double* b, int m, const Eigen::Vector3d& target,
+                        const Eigen::Vector3d& normal, double weight, bool) {
+                      WeightResidual r;
+                      for (int i = 0; i < m; ++i) r.v[i] = v[i], r.bary[i] = b[i];
+                      r.target = target;
+                      r.normal = normal;
+                      r.weight = weight;
+                      r.corners = m;
+                      r.pose = int(j);
+                      out.push_back(r);
+                    });
   return out;
 }
 
@@ -461,7 +466,7 @@ void fit_weights(SkinnedMesh& lod, const std::vector<Pose>& poses, const PoseTar
     for (const Influences& inf : before) ws.max_influences = std::max(ws.max_influences, inf.size());
   }
   ws.tangential_weight = settings.tangential_weight;
-  if (refit_weights(lod, poses, weight_residuals(pt, hits, lod.n_vertices()), ws) == 0) return;
+  if (refit_weights(lod, poses, weight_residuals(lod, pt, hits), ws) == 0) return;
   for (int tries = 0; tries < 5; ++tries) {
     std::vector<std::vector<Eigen::Vector3d>> posed_after;
     for (const Pose& p : poses) posed_after.push_back(skin_positions(lod, p));

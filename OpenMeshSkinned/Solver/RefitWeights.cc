@@ -3,6 +3,7 @@
 #include "OpenMeshSkinned/Skin/LinearBlendSkinning.hh"
 #include "OpenMeshSkinned/Skin/Morph.hh"
 #include "OpenMeshSkinned/Skin/SkinProperties.hh"
+#include "OpenMeshSkinned/Solver/FitSamples.hh"
 #include "OpenMeshSkinned/Solver/WeightSolver.hh"
 
 #include <algorithm>
@@ -44,7 +45,6 @@ size_t refit_weights(SkinnedMesh& lod, const std::vector<Pose>& poses, const std
     for (int c = 0; c < residuals[r].corners; ++c) touches[residuals[r].v[c]].push_back({uint32_t(r), c});
   WeightSolver solver;
   solver.set_regularization(settings.regularization);
-  const double t2 = settings.tangential_weight * settings.tangential_weight;
   size_t changed = 0;
   std::vector<int> joints;
   std::vector<Eigen::Vector3d> carried;  // pose k, candidate i: the vertex carried by joint i alone
@@ -76,12 +76,7 @@ size_t refit_weights(SkinnedMesh& lod, const std::vector<Pose>& poses, const std
       for (int i = 0; i < e.corners; ++i)
         if (i != c) rest += e.bary[i] * y[e.pose][e.v[i]];
       for (int i = 0; i < m; ++i) V.col(i) = e.bary[c] * carried[e.pose * m + i] + rest;
-      Eigen::Matrix3d W = e.weight * Eigen::Matrix3d::Identity();
-      if (t2 != 1.0 && e.normal.squaredNorm() > 0.0) {
-        const Eigen::Matrix3d nn = e.normal * e.normal.transpose();
-        W = e.weight * (nn + t2 * (Eigen::Matrix3d::Identity() - nn));
-      }
-      H.noalias() += V.transpose() * W * V;
+      H.noalias() += V.transpose() * residual_metric(e.normal, settings.tangential_weight, e.weight) * V;
     }
     WeightSolver::Vector start = WeightSolver::Vector::Zero(m), alpha(m);
     for (int i = 0; i < inf.size(); ++i) start[i] = inf[i].weight;
